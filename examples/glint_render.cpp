@@ -1,0 +1,225 @@
+// glint-render: renders a scene file with one renderer variant, chosen when this file is
+// compiled (GLINT_VARIANT, e.g. -DGLINT_VARIANT=report). One executable per variant keeps each
+// translation unit to a single instantiation of the renderer.
+
+#include <unistd.h>
+
+#include <charconv>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "glint/glint.hpp"
+
+#ifndef GLINT_VARIANT
+#define GLINT_VARIANT report
+#endif
+#define GLINT_STRINGIFY_(x) #x
+#define GLINT_STRINGIFY(x) GLINT_STRINGIFY_(x)
+
+namespace {
+
+using Variant = glint::variants::GLINT_VARIANT;
+constexpr std::string_view kVariantName = GLINT_STRINGIFY(GLINT_VARIANT);
+
+constexpr std::string_view kUsage = R"(usage: glint-render SCENE [options]
+
+Renders SCENE (a glint scene file) with the path tracer and writes an image.
+
+options:
+  -o, --output FILE   8-bit sRGB PNG to write (default: SCENE's name with .png, in the
+                      current directory)
+  --hdr FILE          also write linear radiance as a PFM (portable float map)
+  --spp N             samples per pixel (overrides the scene's image spp)
+  --max-depth N       most bounces after the camera ray; 0 = direct light only
+  --width W           image width in pixels (overrides the scene)
+  --height H          image height in pixels (overrides the scene)
+  --threads N         worker threads (default: one per hardware thread); the image does
+                      not depend on it
+  --seed N            random seed (default 0): same scene, settings and seed give the
+                      same image bit for bit
+  --quiet             no progress or summary on stderr
+  -h, --help          this help
+
+Progress with an estimated time left goes to stderr while rendering, then one summary line.
+Exit status: 0 on success, 1 for a bad scene or an unwritable output, 2 for bad options.
+)";
+
+struct Options {
+  std::string scene;
+  std::optional<std::string> output;
+  std::optional<std::string> hdr;
+  std::optional<int> spp, max_depth, width, height, threads;
+  std::uint64_t seed = 0;
+  bool quiet = false;
+};
+
+struct UsageError {
+  std::string message;
+};
+
+template <typename Int>
+Int parse_integer(std::string_view option, std::string_view text, Int low, Int high) {
+  Int value{};
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || value < low || value > high)
+    throw UsageError{std::string(option) + " expects an integer in [" + std::to_string(low) +
+                     ", " + std::to_string(high) + "], got '" + std::string(text) + "'"};
+  return value;
+}
+
+Options parse_options(int argc, char** argv) {
+  Options options;
+  std::vector<std::string_view> args(argv + 1, argv + argc);
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string_view arg = args[i];
+    const auto value = [&]() -> std::string_view {
+      if (i + 1 >= args.size()) throw UsageError{std::string(arg) + " needs a value"};
+      return args[++i];
+    };
+    if (arg == "-h" || arg == "--help") {
+      std::cout << kUsage << "\nvariant: " << kVariantName << "\n";
+      std::exit(0);
+    } else if (arg == "-o" || arg == "--output") {
+      options.output = std::string(value());
+    } else if (arg == "--hdr") {
+      options.hdr = std::string(value());
+    } else if (arg == "--spp") {
+      options.spp = parse_integer(arg, value(), 1, glint::kMaxSamplesPerPixel);
+    } else if (arg == "--max-depth") {
+      options.max_depth = parse_integer(arg, value(), 0, glint::kMaxDepth);
+    } else if (arg == "--width") {
+      options.width = parse_integer(arg, value(), 1, glint::kMaxImageSide);
+    } else if (arg == "--height") {
+      options.height = parse_integer(arg, value(), 1, glint::kMaxImageSide);
+    } else if (arg == "--threads") {
+      options.threads = parse_integer(arg, value(), 1, 4096);
+    } else if (arg == "--seed") {
+      options.seed = parse_integer<std::uint64_t>(arg, value(), 0, UINT64_MAX);
+    } else if (arg == "--quiet" || arg == "-q") {
+      options.quiet = true;
+    } else if (arg.size() > 1 && arg[0] == '-') {
+      throw UsageError{"unknown option '" + std::string(arg) + "'"};
+    } else if (options.scene.empty()) {
+      options.scene = std::string(arg);
+    } else {
+      throw UsageError{"more than one scene given ('" + options.scene + "' and '" +
+                       std::string(arg) + "')"};
+    }
+  }
+  if (options.scene.empty()) throw UsageError{"no scene file given"};
+  return options;
+}
+
+std::string format_seconds(double seconds) {
+  char text[32];
+  if (seconds < 60.0)
+    std::snprintf(text, sizeof text, "%.1f s", seconds);
+  else if (seconds < 3600.0)
+    std::snprintf(text, sizeof text, "%dm%02ds", int(seconds) / 60, int(seconds) % 60);
+  else
+    std::snprintf(text, sizeof text, "%dh%02dm", int(seconds) / 3600, int(seconds) / 60 % 60);
+  return text;
+}
+
+/// Progress on stderr: redrawn in place on a terminal, a line every 10% otherwise (logs).
+class ProgressPrinter {
+ public:
+  explicit ProgressPrinter(bool enabled) : enabled_(enabled), terminal_(isatty(2) != 0) {}
+
+  void operator()(const glint::RenderProgress& p) {
+    if (!enabled_) return;
+    const double fraction = p.fraction();
+    const bool done = p.tiles_done == p.tiles_total;
+    if (terminal_) {
+      if (!done && p.elapsed_seconds - last_print_ < 0.1) return;
+    } else {
+      if (!done && int(fraction * 10) == last_decile_) return;
+      last_decile_ = int(fraction * 10);
+    }
+    last_print_ = p.elapsed_seconds;
+    std::string eta = "--";
+    if (fraction > 0.0) eta = format_seconds(p.elapsed_seconds * (1.0 - fraction) / fraction);
+    std::fprintf(stderr, "%s[%3d%%] %s elapsed, ETA %s   %s", terminal_ ? "\r" : "",
+                 int(fraction * 100.0), format_seconds(p.elapsed_seconds).c_str(), eta.c_str(),
+                 terminal_ && !done ? "" : "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  bool enabled_;
+  bool terminal_;
+  double last_print_ = -1.0;
+  int last_decile_ = -1;
+};
+
+void check_writable_directory(const std::string& file) {
+  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+  if (!parent.empty() && !std::filesystem::is_directory(parent))
+    throw glint::ImageWriteError("cannot write " + file + ": directory " + parent.string() +
+                                 " does not exist");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  try {
+    options = parse_options(argc, argv);
+  } catch (const UsageError& error) {
+    std::cerr << "glint-render: " << error.message << "\n\n" << kUsage;
+    return 2;
+  }
+  try {
+    glint::SceneDescription description = glint::read_scene_file(options.scene);
+    const glint::Scene scene = glint::Scene::build(description);
+    glint::check_supported<Variant>(scene);
+
+    glint::RenderSettings settings = glint::RenderSettings::from(description);
+    if (options.spp) settings.samples_per_pixel = *options.spp;
+    if (options.max_depth) settings.max_depth = *options.max_depth;
+    if (options.width) settings.width = *options.width;
+    if (options.height) settings.height = *options.height;
+    if (options.threads) settings.threads = *options.threads;
+    settings.seed = options.seed;
+
+    const std::string output =
+        options.output ? *options.output
+                       : std::filesystem::path(options.scene).stem().string() + ".png";
+    check_writable_directory(output);
+    if (options.hdr) check_writable_directory(*options.hdr);
+
+    const glint::RenderResult result = glint::Renderer<Variant>::render(
+        scene, settings, ProgressPrinter(!options.quiet));
+    glint::write_png(result.film, output);
+    if (options.hdr) glint::write_pfm(result.film, *options.hdr);
+
+    if (!options.quiet) {
+      const glint::RenderStats& stats = result.stats;
+      std::fprintf(stderr,
+                   "glint-render (%s): %s -> %s: %dx%d, %d spp, depth %d in %.2f s on %d threads: "
+                   "%.3g samples, %.1f Mrays/s\n",
+                   std::string(kVariantName).c_str(), options.scene.c_str(), output.c_str(),
+                   settings.width, settings.height, settings.samples_per_pixel, settings.max_depth,
+                   stats.seconds, stats.threads, double(stats.samples),
+                   double(stats.rays) / stats.seconds * 1e-6);
+    }
+    if (result.stats.invalid_samples > 0)
+      std::fprintf(stderr, "glint-render: warning: %llu samples were NaN or infinite and dropped\n",
+                   static_cast<unsigned long long>(result.stats.invalid_samples));
+    return 0;
+  } catch (const std::exception& error) {
+    // SceneError messages already read "FILE:LINE: error: ..."
+    const std::string_view message = error.what();
+    if (message.find(": error: ") != std::string_view::npos)
+      std::cerr << message << "\n";
+    else
+      std::cerr << "glint-render: error: " << message << "\n";
+    return 1;
+  }
+}

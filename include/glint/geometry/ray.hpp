@@ -1,0 +1,40 @@
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include "glint/math/vector.hpp"
+
+namespace glint {
+
+inline constexpr std::uint32_t kNoSphere = std::numeric_limits<std::uint32_t>::max();
+inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+/// A ray with a unit direction. A ray that starts on a sphere's surface remembers that sphere
+/// and whether it heads into it: leaving outwards it cannot meet that (convex) sphere again,
+/// heading inwards it meets only the far side. This replaces the usual self-intersection
+/// epsilon with an exact rule (see Scene::intersect).
+struct Ray {
+  Vec3 origin{0.0f};
+  Vec3 direction{0.0f, 0.0f, 1.0f};
+  float t_min = 0.0f;
+  float t_max = kInfinity;
+  std::uint32_t origin_sphere = kNoSphere;
+  bool heads_into_origin_sphere = false;
+
+  Vec3 at(float t) const { return origin + t * direction; }
+};
+
+/// A ray leaving sphere `sphere` at `point`, whose outward normal there is `outward_normal`.
+inline Ray ray_leaving_sphere(const Vec3& point, const Vec3& direction, std::uint32_t sphere,
+                              const Vec3& outward_normal, float t_max = kInfinity) {
+  Ray ray;
+  ray.origin = point;
+  ray.direction = direction;
+  ray.t_max = t_max;
+  ray.origin_sphere = sphere;
+  ray.heads_into_origin_sphere = glm::dot(direction, outward_normal) < 0.0f;
+  return ray;
+}
+
+}  // namespace glint

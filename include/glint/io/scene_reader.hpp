@@ -1,0 +1,504 @@
+#pragma once
+// The scene file reader: text in, validated SceneDescription out. The format is specified in
+// docs/scene-format.md; in short, one statement per line, `#` starts a comment, `key=value`
+// tokens, vectors `x,y,z`:
+//
+//   image  width=800 height=600 spp=64
+//   light  position=-10,20,40 intensity=4000
+//   sphere center=0,0,0 radius=10 diffuse=0.5 mirror=0.5
+//
+// Every problem, syntactic or semantic, is a SceneError "SOURCE:LINE: error: PROBLEM"; the
+// reader stops at the first one. Input is untrusted: it is read in one linear pass with no
+// recursion, numbers go through std::from_chars (locale-independent, whole token consumed)
+// and every quoted piece of input in a message is escaped and shortened.
+
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "glint/math/vector.hpp"
+#include "glint/scene/material.hpp"
+#include "glint/scene/scene_description.hpp"
+#include "glint/scene/scene_error.hpp"
+#include "glint/scene/validate.hpp"
+
+namespace glint {
+
+/// Lines longer than this are rejected: no valid statement comes near it, and a binary file
+/// fed by mistake usually trips it (or the NUL check) on its first line.
+inline constexpr std::size_t kMaxSceneLineLength = 1 << 16;
+/// read_scene_file refuses larger files, so that a pipe or device that never ends
+/// (/dev/zero, `yes |`) cannot exhaust memory. Ten million spheres fit in about 600 MB.
+inline constexpr std::uintmax_t kMaxSceneFileSize = std::uintmax_t{1} << 30;
+
+namespace detail::scene_reader {
+
+/// Input quoted in an error message: control and non-ASCII bytes escaped, long text cut, so
+/// that a message stays one readable line whatever the file contains.
+inline std::string quoted(std::string_view text) {
+  constexpr std::size_t kMaxShown = 40;
+  std::string out = "'";
+  const std::size_t shown = text.size() > kMaxShown ? kMaxShown : text.size();
+  for (std::size_t i = 0; i < shown; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f && c != '\\') {
+      out += static_cast<char>(c);
+    } else {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  if (shown < text.size()) out += "...";
+  return out + "'";
+}
+
+inline std::string join(std::span<const std::string_view> words) {
+  std::string out;
+  for (std::string_view word : words) {
+    if (!out.empty()) out += ", ";
+    out += word;
+  }
+  return out;
+}
+
+inline bool is_space(char c) {
+  return c == ' ' || c == '\t';
+}
+
+inline bool is_identifier(std::string_view name) {
+  if (name.empty() || (name[0] >= '0' && name[0] <= '9')) return false;
+  for (char c : name) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+// Key tables. The material keys come first in the sphere table so that one function reads an
+// inline material and a named one with the same indices.
+enum MaterialKey : int {
+  kDiffuse,
+  kColor,
+  kMirror,
+  kMirrorColor,
+  kTransparent,
+  kTransparentColor,
+  kIor,
+  kEmission,
+  kMaterialKeyCount
+};
+enum SphereKey : int { kCenter = kMaterialKeyCount, kRadius, kMaterialName, kShading };
+inline constexpr std::string_view kMaterialKeys[] = {
+    "diffuse",           "color", "mirror",  "mirror_color", "transparent",
+    "transparent_color", "ior",   "emission"};
+inline constexpr std::string_view kSphereKeys[] = {
+    "diffuse", "color",    "mirror", "mirror_color", "transparent", "transparent_color",
+    "ior",     "emission", "center", "radius",       "material",    "shading"};
+
+enum ImageKey : int { kWidth, kHeight, kSpp, kMaxDepthKey };
+inline constexpr std::string_view kImageKeys[] = {"width", "height", "spp", "max_depth"};
+enum CameraKey : int { kPosition, kLookAt, kUp, kFov, kNear };
+inline constexpr std::string_view kCameraKeys[] = {"position", "look_at", "up", "fov", "near"};
+enum LightKey : int { kLightPosition, kIntensity, kLightColor };
+inline constexpr std::string_view kLightKeys[] = {"position", "intensity", "color"};
+inline constexpr std::string_view kAntialiasKeys[] = {"sigma"};
+inline constexpr std::string_view kBackgroundKeys[] = {"color"};
+inline constexpr std::string_view kMediumKeys[] = {"ior"};
+
+static_assert(std::size(kSphereKeys) <= 16 && kShading + 1 == int(std::size(kSphereKeys)));
+
+inline constexpr std::string_view kStatements[] = {"image",  "camera", "antialias", "background",
+                                                   "medium", "light",  "material",  "sphere"};
+
+/// The key=value tokens of one statement, indexed by their position in the statement's table.
+struct Fields {
+  static constexpr std::size_t kMaxKeys = 16;
+  std::array<std::string_view, kMaxKeys> values{};
+  std::uint32_t present = 0;
+  bool has(int key) const { return (present >> key) & 1u; }
+  std::string_view operator[](int key) const { return values[static_cast<std::size_t>(key)]; }
+};
+
+struct StringHash {
+  using is_transparent = void;
+  std::size_t operator()(std::string_view s) const noexcept {
+    return std::hash<std::string_view>{}(s);
+  }
+};
+
+class Parser {
+ public:
+  explicit Parser(std::string source) { scene_.source = std::move(source); }
+
+  SceneDescription parse(std::string_view text) {
+    // A UTF-8 byte order mark, as some Windows editors write, is not part of the first line.
+    if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
+    std::size_t start = 0;
+    while (start < text.size()) {
+      std::size_t end = text.find('\n', start);
+      if (end == std::string_view::npos) end = text.size();
+      if (line_ == INT_MAX) fail("too many lines");
+      ++line_;
+      parse_line(text.substr(start, end - start));
+      start = end + 1;
+    }
+    line_ = 0;
+    validate(scene_);
+    return std::move(scene_);
+  }
+
+ private:
+  struct NamedMaterial {
+    Material material;
+    int line;
+  };
+
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw SceneError(scene_.source, line_, problem);
+  }
+
+  void parse_line(std::string_view line) {
+    if (line.size() > kMaxSceneLineLength)
+      fail("line is longer than " + std::to_string(kMaxSceneLineLength) + " characters");
+    if (line.find('\0') != std::string_view::npos)
+      fail("line contains a NUL byte (is this a text file?)");
+    if (line.ends_with('\r')) line.remove_suffix(1);  // CRLF line endings
+    if (const std::size_t hash = line.find('#'); hash != std::string_view::npos)
+      line = line.substr(0, hash);
+
+    tokens_.clear();
+    std::size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && is_space(line[i]))
+        ++i;
+      const std::size_t begin = i;
+      while (i < line.size() && !is_space(line[i]))
+        ++i;
+      if (i > begin) tokens_.push_back(line.substr(begin, i - begin));
+    }
+    if (tokens_.empty()) return;
+
+    const std::string_view keyword = tokens_[0];
+    const std::span<const std::string_view> rest(tokens_.data() + 1, tokens_.size() - 1);
+    if (keyword == "sphere") return read_sphere(rest);  // first: a big scene is mostly spheres
+    if (keyword == "light") return read_light(rest);
+    if (keyword == "material") return read_named_material(rest);
+    if (keyword == "image") return read_image(rest);
+    if (keyword == "camera") return read_camera(rest);
+    if (keyword == "antialias") return read_antialias(rest);
+    if (keyword == "background") return read_background(rest);
+    if (keyword == "medium") return read_medium(rest);
+    fail("unknown statement " + quoted(keyword) + " (expected one of: " + join(kStatements) + ")");
+  }
+
+  /// Statements that configure the whole scene may appear once; `line` is where the scene
+  /// records the statement, still 0 if it has not been seen.
+  void once(std::string_view statement, int& line) {
+    if (line != 0)
+      fail("duplicate '" + std::string(statement) + "' statement (first given at line " +
+           std::to_string(line) + ")");
+    line = line_;
+  }
+
+  Fields fields(std::string_view statement, std::span<const std::string_view> keys,
+                std::span<const std::string_view> tokens) const {
+    Fields result;
+    for (std::string_view token : tokens) {
+      const std::size_t equals = token.find('=');
+      if (equals == std::string_view::npos)
+        fail("expected key=value, got " + quoted(token) +
+             " (no spaces are allowed around '=' or in vectors)");
+      const std::string_view key = token.substr(0, equals);
+      const std::string_view value = token.substr(equals + 1);
+      if (key.empty()) fail("missing key before '=' in " + quoted(token));
+      std::size_t index = 0;
+      while (index < keys.size() && keys[index] != key)
+        ++index;
+      if (index == keys.size())
+        fail("unknown key " + quoted(key) + " for " + std::string(statement) +
+             " (valid keys: " + join(keys) + ")");
+      if (result.has(static_cast<int>(index))) fail("key '" + std::string(key) + "' given twice");
+      if (value.empty()) fail("missing value for '" + std::string(key) + "'");
+      result.values[index] = value;
+      result.present |= 1u << index;
+    }
+    return result;
+  }
+
+  void require(const Fields& f, std::span<const std::string_view> keys, int key,
+               std::string_view statement) const {
+    if (!f.has(key))
+      fail("missing required key '" + std::string(keys[static_cast<std::size_t>(key)]) + "' for " +
+           std::string(statement));
+  }
+
+  float number(std::string_view key, std::string_view text) const {
+    std::string_view digits = text;
+    // from_chars takes no '+' sign; accept one, but not "+-1".
+    if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-') digits.remove_prefix(1);
+    const char* const end = digits.data() + digits.size();
+    float value = 0.0f;
+    const std::from_chars_result result = std::from_chars(digits.data(), end, value);
+    if (result.ec == std::errc::result_out_of_range) {
+      // Out of float's range either way; in double we learn which way. Underflow is only
+      // rounding (to zero), overflow is an error.
+      double wide = 0.0;
+      const std::from_chars_result again = std::from_chars(digits.data(), end, wide);
+      const bool parsed = again.ec == std::errc{} && again.ptr == end;
+      if (parsed && std::abs(wide) < 1.0) {
+        value = static_cast<float>(wide);
+      } else if (parsed) {
+        fail("'" + std::string(key) + "' must be a finite number, got " + quoted(text) +
+             " (too large for a 32-bit float)");
+      } else {
+        fail("number " + quoted(text) + " for '" + std::string(key) + "' is out of range");
+      }
+    } else if (result.ec != std::errc{} || result.ptr != end) {
+      fail("bad number " + quoted(text) + " for '" + std::string(key) + "'");
+    }
+    if (!std::isfinite(value))
+      fail("'" + std::string(key) + "' must be a finite number, got " + quoted(text));
+    return value;
+  }
+
+  int integer(std::string_view key, std::string_view text) const {
+    std::string_view digits = text;
+    if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-') digits.remove_prefix(1);
+    int value = 0;
+    const char* const end = digits.data() + digits.size();
+    const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
+    if (ec == std::errc::result_out_of_range)
+      fail("integer " + quoted(text) + " for '" + std::string(key) + "' is out of range");
+    if (ec != std::errc{} || ptr != end)
+      fail("'" + std::string(key) + "' must be an integer, got " + quoted(text));
+    return value;
+  }
+
+  Vec3 vec3(std::string_view key, std::string_view text) const {
+    std::string_view parts[3];
+    std::size_t count = 0;
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t comma = text.find(',', start);
+      const std::size_t stop = comma == std::string_view::npos ? text.size() : comma;
+      if (count < 3) parts[count] = text.substr(start, stop - start);
+      ++count;
+      if (comma == std::string_view::npos) break;
+      start = comma + 1;
+    }
+    if (count != 3)
+      fail("'" + std::string(key) + "' needs 3 components x,y,z, got " + std::to_string(count) +
+           " in " + quoted(text));
+    return Vec3(number(key, parts[0]), number(key, parts[1]), number(key, parts[2]));
+  }
+
+  float coefficient(std::string_view key, std::string_view text) const {
+    const float value = number(key, text);
+    if (!(value >= 0.0f && value <= 1.0f))
+      fail("'" + std::string(key) + "' must be in [0, 1], got " + quoted(text));
+    return value;
+  }
+
+  /// The material keys of `f` (indices as in kMaterialKeys) over the defaults.
+  Material material_from(const Fields& f) const {
+    Material m;
+    if (f.has(kColor)) m.diffuse_color = vec3("color", f[kColor]);
+    if (f.has(kMirror)) m.mirror = coefficient("mirror", f[kMirror]);
+    if (f.has(kMirrorColor)) m.mirror_color = vec3("mirror_color", f[kMirrorColor]);
+    if (f.has(kTransparent)) m.transparent = coefficient("transparent", f[kTransparent]);
+    if (f.has(kTransparentColor))
+      m.transparent_color = vec3("transparent_color", f[kTransparentColor]);
+    if (f.has(kIor)) m.ior = number("ior", f[kIor]);
+    if (f.has(kEmission)) m.emission = vec3("emission", f[kEmission]);
+    if (f.has(kDiffuse)) {
+      m.diffuse = coefficient("diffuse", f[kDiffuse]);
+    } else {
+      // Whatever the other lobes leave; in double and clamped so that mirror=0.7
+      // transparent=0.3 gives 0, not -3e-8.
+      const double rest = 1.0 - double(m.mirror) - double(m.transparent);
+      if (rest < -1e-5)
+        fail("mirror + transparent must not exceed 1, got " +
+             detail::format_number(m.mirror + m.transparent));
+      m.diffuse = rest > 0.0 ? static_cast<float>(rest) : 0.0f;
+    }
+    detail::check_material(scene_, m, line_);
+    return m;
+  }
+
+  void read_image(std::span<const std::string_view> tokens) {
+    ImageDescription& image = scene_.image;
+    once("image", image.line);
+    const Fields f = fields("image", kImageKeys, tokens);
+    if (f.has(kWidth)) image.width = integer("width", f[kWidth]);
+    if (f.has(kHeight)) image.height = integer("height", f[kHeight]);
+    if (f.has(kSpp)) image.samples_per_pixel = integer("spp", f[kSpp]);
+    if (f.has(kMaxDepthKey)) image.max_depth = integer("max_depth", f[kMaxDepthKey]);
+    detail::check_image(scene_);
+  }
+
+  void read_camera(std::span<const std::string_view> tokens) {
+    CameraDescription& camera = scene_.camera;
+    once("camera", camera.line);
+    const Fields f = fields("camera", kCameraKeys, tokens);
+    if (f.has(kPosition)) camera.position = vec3("position", f[kPosition]);
+    if (f.has(kLookAt)) camera.look_at = vec3("look_at", f[kLookAt]);
+    if (f.has(kUp)) camera.up = vec3("up", f[kUp]);
+    if (f.has(kFov)) camera.fov_degrees = number("fov", f[kFov]);
+    if (f.has(kNear)) camera.near = number("near", f[kNear]);
+    detail::check_camera(scene_);
+  }
+
+  void read_antialias(std::span<const std::string_view> tokens) {
+    once("antialias", scene_.antialias_line);
+    const Fields f = fields("antialias", kAntialiasKeys, tokens);
+    if (f.has(0)) scene_.antialias_sigma = number("sigma", f[0]);
+    detail::check_antialias(scene_);
+  }
+
+  void read_background(std::span<const std::string_view> tokens) {
+    once("background", scene_.background_line);
+    const Fields f = fields("background", kBackgroundKeys, tokens);
+    if (f.has(0)) scene_.background = vec3("color", f[0]);
+    detail::check_background(scene_);
+  }
+
+  void read_medium(std::span<const std::string_view> tokens) {
+    once("medium", scene_.medium_line);
+    const Fields f = fields("medium", kMediumKeys, tokens);
+    if (f.has(0)) scene_.medium_ior = number("ior", f[0]);
+    detail::check_medium(scene_);
+  }
+
+  void read_light(std::span<const std::string_view> tokens) {
+    const Fields f = fields("light", kLightKeys, tokens);
+    require(f, kLightKeys, kLightPosition, "light");
+    require(f, kLightKeys, kIntensity, "light");
+    PointLight light;
+    light.line = line_;
+    light.position = vec3("position", f[kLightPosition]);
+    light.intensity = number("intensity", f[kIntensity]);
+    if (f.has(kLightColor)) light.color = vec3("color", f[kLightColor]);
+    detail::check_light(scene_, light);
+    scene_.lights.push_back(light);
+  }
+
+  void read_named_material(std::span<const std::string_view> tokens) {
+    if (tokens.empty() || tokens[0].find('=') != std::string_view::npos)
+      fail("material needs a name before its keys (material NAME key=value ...)");
+    const std::string_view name = tokens[0];
+    if (!is_identifier(name))
+      fail("invalid material name " + quoted(name) +
+           " (use letters, digits, '_' and '-', not starting with a digit)");
+    const Fields f = fields("material", kMaterialKeys, tokens.subspan(1));
+    if (const auto it = materials_.find(name); it != materials_.end())
+      fail("duplicate material '" + std::string(name) + "' (first defined at line " +
+           std::to_string(it->second.line) + ")");
+    const Material m = material_from(f);
+    materials_.emplace(std::string(name), NamedMaterial{m, line_});
+  }
+
+  void read_sphere(std::span<const std::string_view> tokens) {
+    const Fields f = fields("sphere", kSphereKeys, tokens);
+    require(f, kSphereKeys, kCenter, "sphere");
+    require(f, kSphereKeys, kRadius, "sphere");
+    SphereDescription sphere;
+    sphere.line = line_;
+    sphere.center = vec3("center", f[kCenter]);
+    sphere.radius = number("radius", f[kRadius]);
+    if (!(sphere.radius > 0.0f)) fail("sphere radius must be positive, got " + quoted(f[kRadius]));
+    if (f.has(kMaterialName)) {
+      constexpr std::uint32_t kInlineKeys = (1u << kMaterialKeyCount) - 1u;
+      if (f.present & kInlineKeys) {
+        int first = 0;
+        while (!f.has(first))
+          ++first;
+        fail("sphere has both material=" + std::string(f[kMaterialName]) + " and inline key '" +
+             std::string(kMaterialKeys[first]) + "'; use one or the other");
+      }
+      const auto it = materials_.find(f[kMaterialName]);
+      if (it == materials_.end())
+        fail("undefined material " + quoted(f[kMaterialName]) +
+             " (materials must be defined before the spheres that use them)");
+      sphere.material = it->second.material;
+    } else {
+      sphere.material = material_from(f);
+    }
+    if (f.has(kShading)) sphere.shading = shading(f[kShading]);
+    detail::check_sphere(scene_, sphere);
+    scene_.spheres.push_back(sphere);
+  }
+
+  ShadingKind shading(std::string_view text) const {
+    std::string expected;
+    for (int i = 0; i < kShadingKindCount; ++i) {
+      const auto kind = static_cast<ShadingKind>(i);
+      if (text == to_string(kind)) return kind;
+      expected += (i == 0 ? "" : i + 1 == kShadingKindCount ? " or " : ", ");
+      expected += to_string(kind);
+    }
+    fail("unknown shading " + quoted(text) + " (expected " + expected + ")");
+  }
+
+  SceneDescription scene_;
+  int line_ = 0;
+  std::vector<std::string_view> tokens_;  // reused across lines: no allocation per line
+  std::unordered_map<std::string, NamedMaterial, StringHash, std::equal_to<>> materials_;
+};
+
+}  // namespace detail::scene_reader
+
+/// Parses and validates a scene; `source` names it in error messages ("FILE:LINE: error: ...").
+inline SceneDescription read_scene_text(std::string_view text, std::string source = "<scene>") {
+  return detail::scene_reader::Parser(std::move(source)).parse(text);
+}
+
+/// Reads a scene file; errors name the path as given. A file that cannot be opened or read
+/// is a SceneError with line 0.
+inline SceneDescription read_scene_file(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  const auto fail = [&](const std::string& problem) { throw SceneError(source, 0, problem); };
+  std::error_code ec;
+  // fopen succeeds on a directory on Linux; say what is wrong instead of "Is a directory" on
+  // the first read.
+  if (std::filesystem::is_directory(path, ec)) fail("cannot open file: it is a directory");
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(source.c_str(), "rb"),
+                                                             &std::fclose);
+  if (!file) fail("cannot open file: " + std::string(std::strerror(errno)));
+  std::string text;
+  char buffer[1 << 16];
+  while (true) {
+    const std::size_t got = std::fread(buffer, 1, sizeof buffer, file.get());
+    if (got > 0) {
+      if (text.size() + got > kMaxSceneFileSize)
+        fail("file is larger than " + std::to_string(kMaxSceneFileSize >> 20) + " MiB");
+      text.append(buffer, got);
+    }
+    if (got < sizeof buffer) {
+      if (std::ferror(file.get())) fail("cannot read file: " + std::string(std::strerror(errno)));
+      break;
+    }
+  }
+  return read_scene_text(text, source);
+}
+
+}  // namespace glint

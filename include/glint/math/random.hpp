@@ -1,0 +1,65 @@
+#pragma once
+// Random numbers that depend only on their inputs, never on the standard library or on thread
+// scheduling: images are reproducible bit for bit across compilers and thread counts.
+
+#include <cstdint>
+
+namespace glint {
+
+/// A 64-bit finaliser (MurmurHash3 fmix64 constants): avalanches every input bit.
+constexpr std::uint64_t mix_bits(std::uint64_t v) {
+  v ^= v >> 33;
+  v *= 0xff51afd7ed558ccdULL;
+  v ^= v >> 33;
+  v *= 0xc4ceb9fe1a85ec53ULL;
+  v ^= v >> 33;
+  return v;
+}
+
+/// Hashes any number of integers into one well-mixed 64-bit value.
+template <typename... Ts>
+constexpr std::uint64_t hash_values(Ts... values) {
+  std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+  ((h = mix_bits(h ^ (static_cast<std::uint64_t>(values) + 0x9e3779b97f4a7c15ULL + (h << 6) +
+                      (h >> 2)))),
+   ...);
+  return h;
+}
+
+/// Maps 24 random bits to a float uniformly in [0, 1): every value is exactly representable,
+/// and 1 is never returned.
+constexpr float bits_to_unit_float(std::uint32_t bits) {
+  return static_cast<float>(bits >> 8) * 0x1p-24f;
+}
+
+/// PCG32 (O'Neill, XSH-RR output on a 64-bit LCG): small state, fast, statistically strong.
+class Pcg32 {
+ public:
+  constexpr Pcg32() = default;
+  constexpr Pcg32(std::uint64_t seed, std::uint64_t stream) { reseed(seed, stream); }
+
+  constexpr void reseed(std::uint64_t seed, std::uint64_t stream) {
+    state_ = 0;
+    increment_ = (stream << 1u) | 1u;
+    next_u32();
+    state_ += seed;
+    next_u32();
+  }
+
+  constexpr std::uint32_t next_u32() {
+    const std::uint64_t old = state_;
+    state_ = old * 6364136223846793005ULL + increment_;
+    const auto xorshifted = static_cast<std::uint32_t>(((old >> 18u) ^ old) >> 27u);
+    const auto rot = static_cast<std::uint32_t>(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+  }
+
+  /// Uniform in [0, 1).
+  constexpr float next_float() { return bits_to_unit_float(next_u32()); }
+
+ private:
+  std::uint64_t state_ = 0x853c49e6748fea9bULL;
+  std::uint64_t increment_ = 0xda3e39cb94b95bdbULL;
+};
+
+}  // namespace glint

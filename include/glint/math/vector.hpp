@@ -1,0 +1,22 @@
+#pragma once
+// Vector types used throughout glint. Rendering runs in single precision: it halves memory
+// traffic and doubles SIMD width; the ray/sphere test is written to stay accurate in float
+// even for the 1e5-radius wall spheres (see geometry/ray_sphere.hpp).
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace glint {
+
+using Vec2 = glm::vec2;
+using Vec3 = glm::vec3;
+/// Linear RGB radiance or reflectance.
+using Color = glm::vec3;
+
+inline constexpr float kPi = 3.14159265358979323846f;
+inline constexpr float kInvPi = 0.31830988618379067154f;
+
+inline float max_component(const Vec3& v) { return glm::max(v.x, glm::max(v.y, v.z)); }
+
+}  // namespace glint

@@ -1,0 +1,85 @@
+#pragma once
+// The policy concepts. Each rendering feature is a policy type chosen at compile time; these
+// concepts are the contract a type must meet, so that a wrong type fails with one error naming
+// the concept rather than pages of template instantiation.
+
+#include <concepts>
+#include <cstdint>
+
+#include "glint/math/vector.hpp"
+#include "glint/scene/material.hpp"
+
+namespace glint {
+
+/// Identifies one sample of one pixel; samplers derive all their randomness from it, so the
+/// image does not depend on which thread renders which pixel.
+struct PixelSample {
+  std::uint32_t x = 0;
+  std::uint32_t y = 0;
+  std::uint32_t index = 0;              ///< sample number within the pixel, 0 .. count-1
+  std::uint32_t samples_per_pixel = 1;  ///< lets stratified samplers plan their strata
+  std::uint64_t seed = 0;
+};
+
+/// Where sample values come from: a stream of values in [0,1), dimension by dimension.
+template <typename S>
+concept Sampler = std::default_initializable<S> && std::copyable<S> &&
+    requires(S sampler, const PixelSample& pixel_sample) {
+  sampler.start(pixel_sample);
+  { sampler.next_1d() } -> std::same_as<float>;
+  { sampler.next_2d() } -> std::same_as<Vec2>;
+};
+
+/// A diffuse bounce direction in the local frame (z = normal) and its weight cos(theta)/pdf.
+struct DirectionSample {
+  Vec3 local_direction;
+  float weight;
+};
+
+/// How the diffuse bounce direction is drawn.
+template <typename D>
+concept DiffuseSampling = requires(Vec2 u) {
+  { D::sample(u) } -> std::same_as<DirectionSample>;
+  { D::pdf(float{}) } -> std::same_as<float>;  // density for a given cos(theta)
+};
+
+/// How a path's lobes are followed: the report traces every lobe with non-zero coefficient
+/// (a tree of rays); a stochastic model follows one lobe per bounce.
+template <typename M>
+concept MaterialModel = requires {
+  { M::traces_every_lobe } -> std::convertible_to<bool>;
+};
+
+/// Fresnel reflectance of a dielectric interface, used for fully transparent spheres.
+/// cos_incident is measured on the incident side; eta_* are the refractive indices.
+template <typename F>
+concept FresnelModel = requires(float cos_incident, float eta_incident, float eta_transmitted) {
+  { F::enabled } -> std::convertible_to<bool>;
+  { F::reflectance(cos_incident, eta_incident, eta_transmitted) } -> std::same_as<float>;
+};
+
+/// Where in the pixel a primary ray goes: an offset from the pixel centre, in pixels.
+template <typename A>
+concept AntiAliasing = requires(Vec2 u, float sigma) {
+  { A::enabled } -> std::convertible_to<bool>;
+  { A::offset(u, sigma) } -> std::same_as<Vec2>;
+};
+
+/// A sphere's diffuse colour at a point, given the sphere's base colour and the unit direction
+/// from its centre. `supports` lists the closed set of kinds a build handles; scenes using
+/// another kind are rejected when loaded.
+template <typename H>
+concept SphereShading = requires(ShadingKind kind, Color base, Vec3 direction) {
+  { H::supports(kind) } -> std::same_as<bool>;
+  { H::color(kind, base, direction) } -> std::same_as<Color>;
+};
+
+/// When a path stops: at the maximum depth only, or earlier by Russian roulette.
+template <typename T>
+concept PathTermination = requires(int depth, float throughput) {
+  { T::uses_roulette } -> std::convertible_to<bool>;
+  // Probability of continuing after `depth` bounces for a path carrying `throughput`.
+  { T::continue_probability(depth, throughput) } -> std::same_as<float>;
+};
+
+}  // namespace glint

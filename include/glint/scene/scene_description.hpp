@@ -1,0 +1,61 @@
+#pragma once
+// A scene as plain, editable data: what the parser produces, what the random generator
+// produces, and what a program may fill in by hand. Nothing here is optimised for rendering;
+// Scene (scene/scene.hpp) is built from it once. Every element keeps the line it came from so
+// that errors found later (e.g. overlapping glass) can still point into the file.
+
+#include <string>
+#include <vector>
+
+#include "glint/scene/material.hpp"
+
+namespace glint {
+
+struct ImageDescription {
+  int width = 800;
+  int height = 800;
+  int samples_per_pixel = 1000;
+  int max_depth = 12;  ///< most bounces after the camera ray; 0 shows direct light only
+  int line = 0;
+};
+
+struct CameraDescription {
+  Vec3 position{0.0f, 0.0f, 55.0f};
+  Vec3 look_at{0.0f, 0.0f, 0.0f};
+  Vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_degrees = 60.0f;  ///< vertical field of view
+  float near = 0.0f;          ///< nothing closer than this along the viewing direction is seen
+  int line = 0;
+};
+
+struct PointLight {
+  Vec3 position{0.0f};
+  float intensity = 1.0f;  ///< radiant intensity in W/sr, multiplied by color
+  Color color{1.0f};
+  int line = 0;
+};
+
+struct SphereDescription {
+  Vec3 center{0.0f};
+  float radius = 1.0f;
+  Material material{};
+  ShadingKind shading = ShadingKind::uniform;
+  int line = 0;
+};
+
+struct SceneDescription {
+  std::string source = "<scene>";  ///< file name (or a label) used in error messages
+  ImageDescription image{};
+  CameraDescription camera{};
+  float antialias_sigma = 0.5f;  ///< standard deviation of the primary-ray jitter, in pixels
+  Color background{0.0f};        ///< radiance of rays that escape the scene
+  float medium_ior = 1.0f;       ///< refractive index outside every transparent sphere
+  std::vector<PointLight> lights;
+  std::vector<SphereDescription> spheres;
+  // Lines of the statements that set the three scalars above (0: not from a file).
+  int antialias_line = 0;
+  int background_line = 0;
+  int medium_line = 0;
+};
+
+}  // namespace glint

@@ -1,0 +1,36 @@
+#pragma once
+// The one error type for bad scenes, whether they come from a file or from library calls.
+// Its message has the compiler-style form "SOURCE:LINE: error: PROBLEM" so that editors and
+// terminals can jump to the offending line.
+
+#include <stdexcept>
+#include <string>
+
+namespace glint {
+
+class SceneError : public std::runtime_error {
+ public:
+  /// line 0 means "no particular line" (a problem with the scene as a whole).
+  SceneError(std::string source, int line, const std::string& problem)
+      : std::runtime_error(format(source, line, problem)),
+        source_(std::move(source)),
+        line_(line),
+        problem_(problem) {}
+
+  const std::string& source() const noexcept { return source_; }
+  int line() const noexcept { return line_; }
+  const std::string& problem() const noexcept { return problem_; }
+
+ private:
+  static std::string format(const std::string& source, int line, const std::string& problem) {
+    std::string where = source.empty() ? std::string("<scene>") : source;
+    if (line > 0) where += ":" + std::to_string(line);
+    return where + ": error: " + problem;
+  }
+
+  std::string source_;
+  int line_;
+  std::string problem_;
+};
+
+}  // namespace glint

@@ -1,0 +1,181 @@
+#pragma once
+// Semantic checks on a SceneDescription, shared by the scene file reader and by programs that
+// build descriptions themselves. Each failure is a SceneError naming the offending line.
+//
+// The checks are split per element (detail::check_image, check_camera, ...) so that the reader
+// can run each one as soon as its statement is parsed: the first error reported is then the
+// first one in the file, whatever kind it is.
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <system_error>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "glint/math/vector.hpp"
+#include "glint/scene/material.hpp"
+#include "glint/scene/scene_description.hpp"
+#include "glint/scene/scene_error.hpp"
+
+namespace glint {
+
+/// Limits that reject absurd input before it turns into a huge allocation or an endless render.
+inline constexpr int kMaxImageSide = 1 << 15;
+/// A float RGB film of this many pixels takes 768 MiB; a side limit alone would allow 12 GiB.
+inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;
+inline constexpr int kMaxSamplesPerPixel = 1 << 20;
+inline constexpr int kMaxDepth = 1024;
+
+namespace detail {
+
+/// Shortest round-trip text of a float; unlike std::to_string it ignores the C locale.
+inline std::string format_number(float value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  if (result.ec != std::errc{}) return "?";
+  return std::string(buffer, result.ptr);
+}
+
+inline bool finite(const Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+inline bool non_negative(const Vec3& v) {
+  return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f;
+}
+
+inline void check_material(const SceneDescription& scene, const Material& m, int line) {
+  auto fail = [&](const std::string& what) { throw SceneError(scene.source, line, what); };
+  const float coefficients[] = {m.diffuse, m.mirror, m.transparent};
+  const char* names[] = {"diffuse", "mirror", "transparent"};
+  for (int i = 0; i < 3; ++i) {
+    if (!(coefficients[i] >= 0.0f && coefficients[i] <= 1.0f))
+      fail(std::string(names[i]) + " coefficient must be in [0, 1], got " +
+           format_number(coefficients[i]));
+  }
+  // A small tolerance lets "diffuse=0.3 mirror=0.3 transparent=0.4" through despite rounding.
+  if (m.diffuse + m.mirror + m.transparent > 1.0f + 1e-5f)
+    fail("diffuse + mirror + transparent must not exceed 1, got " +
+         format_number(m.diffuse + m.mirror + m.transparent));
+  const Color* colors[] = {&m.diffuse_color, &m.mirror_color, &m.transparent_color};
+  const char* color_names[] = {"color", "mirror_color", "transparent_color"};
+  for (int i = 0; i < 3; ++i) {
+    if (!finite(*colors[i]) || !non_negative(*colors[i]) || max_component(*colors[i]) > 1.0f)
+      fail(std::string(color_names[i]) + " components must be in [0, 1]");
+  }
+  if (!finite(m.emission) || !non_negative(m.emission))
+    fail("emission must be finite and non-negative");
+  if (!(m.ior >= 1e-3f && m.ior <= 100.0f)) fail("ior must be in [0.001, 100]");
+}
+
+inline void check_image(const SceneDescription& scene) {
+  const ImageDescription& image = scene.image;
+  const auto fail = [&](const std::string& what) {
+    throw SceneError(scene.source, image.line, what);
+  };
+  if (image.width < 1 || image.width > kMaxImageSide || image.height < 1 ||
+      image.height > kMaxImageSide)
+    fail("image size must be between 1 and " + std::to_string(kMaxImageSide) +
+         " pixels a side, got " + std::to_string(image.width) + "x" + std::to_string(image.height));
+  if (std::int64_t{image.width} * image.height > kMaxImagePixels)
+    fail("image size " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+         " exceeds " + std::to_string(kMaxImagePixels) + " pixels");
+  if (image.samples_per_pixel < 1 || image.samples_per_pixel > kMaxSamplesPerPixel)
+    fail("spp must be between 1 and " + std::to_string(kMaxSamplesPerPixel) + ", got " +
+         std::to_string(image.samples_per_pixel));
+  if (image.max_depth < 0 || image.max_depth > kMaxDepth)
+    fail("max_depth must be between 0 and " + std::to_string(kMaxDepth) + ", got " +
+         std::to_string(image.max_depth));
+}
+
+inline void check_camera(const SceneDescription& scene) {
+  const CameraDescription& camera = scene.camera;
+  const auto fail = [&](const std::string& what) {
+    throw SceneError(scene.source, camera.line, what);
+  };
+  if (!finite(camera.position) || !finite(camera.look_at) || !finite(camera.up))
+    fail("camera vectors must be finite");
+  // Geometry in double so that the test itself cannot overflow or lose the answer.
+  const glm::dvec3 position(camera.position);
+  const glm::dvec3 forward = glm::dvec3(camera.look_at) - position;
+  const glm::dvec3 up(camera.up);
+  const double distance = glm::length(forward);
+  if (distance <= 1e-6 * (1.0 + glm::length(position)))
+    fail("camera position and look_at coincide");
+  if (glm::length(up) == 0.0) fail("camera up vector is zero");
+  if (glm::length(glm::cross(forward / distance, up / glm::length(up))) < 1e-4)
+    fail("camera up vector is parallel to the viewing direction");
+  // The camera builds its basis in float; vectors valid in double can still overflow or
+  // underflow there (position 1e30 from look_at, up=1e-30,0,0) and give a NaN basis.
+  const Vec3 forward_f = glm::normalize(camera.look_at - camera.position);
+  const Vec3 right_f = glm::normalize(glm::cross(forward_f, camera.up));
+  if (!finite(forward_f) || !finite(right_f) || std::abs(glm::length(forward_f) - 1.0f) > 1e-3f ||
+      std::abs(glm::length(right_f) - 1.0f) > 1e-3f)
+    fail("camera vectors are too large or too small to build a viewing basis in float");
+  if (!(camera.fov_degrees > 0.0f && camera.fov_degrees < 180.0f))
+    fail("camera fov must be strictly between 0 and 180 degrees, got " +
+         format_number(camera.fov_degrees));
+  if (!(camera.near >= 0.0f) || !std::isfinite(camera.near))
+    fail("camera near must be finite and non-negative");
+}
+
+inline void check_antialias(const SceneDescription& scene) {
+  if (!(scene.antialias_sigma >= 0.0f && scene.antialias_sigma <= 100.0f))
+    throw SceneError(
+        scene.source, scene.antialias_line,
+        "antialias sigma must be in [0, 100] pixels, got " + format_number(scene.antialias_sigma));
+}
+
+inline void check_background(const SceneDescription& scene) {
+  if (!finite(scene.background) || !non_negative(scene.background))
+    throw SceneError(scene.source, scene.background_line,
+                     "background color must be finite and non-negative");
+}
+
+inline void check_medium(const SceneDescription& scene) {
+  if (!(scene.medium_ior >= 1e-3f && scene.medium_ior <= 100.0f))
+    throw SceneError(scene.source, scene.medium_line,
+                     "medium ior must be in [0.001, 100], got " + format_number(scene.medium_ior));
+}
+
+inline void check_light(const SceneDescription& scene, const PointLight& light) {
+  const auto fail = [&](const std::string& what) {
+    throw SceneError(scene.source, light.line, what);
+  };
+  if (!finite(light.position)) fail("light position must be finite");
+  if (!(light.intensity >= 0.0f) || !std::isfinite(light.intensity))
+    fail("light intensity must be finite and non-negative");
+  if (!finite(light.color) || !non_negative(light.color))
+    fail("light color must be finite and non-negative");
+}
+
+inline void check_sphere(const SceneDescription& scene, const SphereDescription& sphere) {
+  const auto fail = [&](const std::string& what) {
+    throw SceneError(scene.source, sphere.line, what);
+  };
+  if (!finite(sphere.center)) fail("sphere center must be finite");
+  if (!(sphere.radius > 0.0f) || !std::isfinite(sphere.radius))
+    fail("sphere radius must be positive and finite, got " + format_number(sphere.radius));
+  check_material(scene, sphere.material, sphere.line);
+}
+
+}  // namespace detail
+
+/// Throws SceneError on the first problem found; returns normally for a valid scene. The
+/// nesting rule for transparent spheres is checked by build_inclusion_tree, which needs the
+/// geometry anyway.
+inline void validate(const SceneDescription& scene) {
+  detail::check_image(scene);
+  detail::check_camera(scene);
+  detail::check_antialias(scene);
+  detail::check_background(scene);
+  detail::check_medium(scene);
+  for (const PointLight& light : scene.lights)
+    detail::check_light(scene, light);
+  for (const SphereDescription& sphere : scene.spheres)
+    detail::check_sphere(scene, sphere);
+}
+
+}  // namespace glint

@@ -1,0 +1,7 @@
+// Must NOT compile: int is not a FresnelModel. The test checks that the compiler's message
+// names the violated concept.
+#include "glint/config.hpp"
+
+using broken = glint::Config<glint::IndependentSampler, glint::ReportMaterialModel, int,
+                             glint::GaussianAntialiasing, glint::BuiltinShading>;
+broken::fresnel* use = nullptr;

@@ -1,0 +1,35 @@
+// Renders a lit diffuse sphere from a scene built in code and checks the image is lit where the
+// sphere faces the light, dark elsewhere, and written to disk.
+#include <glint/glint.hpp>
+
+#include <cstdio>
+#include <filesystem>
+
+int main(int argc, char** argv) {
+  if (argc != 2) return 2;
+  glint::SceneDescription description;
+  description.camera.position = {0.0f, 0.0f, 10.0f};
+  glint::SphereDescription ball;
+  ball.radius = 2.0f;
+  description.spheres.push_back(ball);
+  glint::PointLight light;
+  light.position = {0.0f, 0.0f, 10.0f};
+  light.intensity = 100.0f;
+  description.lights.push_back(light);
+
+  glint::RenderSettings settings = glint::RenderSettings::from(description);
+  settings.width = settings.height = 32;
+  settings.samples_per_pixel = 4;
+  const glint::Scene scene = glint::Scene::build(description);
+  const glint::RenderResult result = glint::Renderer<glint::variants::report>::render(scene, settings);
+  // Facing the light head on at distance 8: radiance = I / (pi d^2) = 100 / (64 pi).
+  const float centre = result.film.at(16, 16).x, corner = result.film.at(0, 0).x;
+  const float expected = 100.0f / (64.0f * 3.14159265f);
+  if (std::abs(centre - expected) > 0.02f * expected || corner != 0.0f) {
+    std::fprintf(stderr, "unexpected radiance: centre %g (expected %g), corner %g\n", centre,
+                 expected, corner);
+    return 1;
+  }
+  glint::write_png(result.film, argv[1]);
+  return std::filesystem::file_size(argv[1]) > 0 ? 0 : 1;
+}

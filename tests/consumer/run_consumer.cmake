@@ -1,0 +1,23 @@
+# Installs glint into a scratch prefix, then builds and runs a separate consumer project
+# against it (find_package), and again through add_subdirectory.
+cmake_minimum_required(VERSION 3.20)
+set(work ${GLINT_BINARY_DIR}/consumer-test)
+file(REMOVE_RECURSE ${work})
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "command failed (${status}): ${ARGN}\n${out}")
+  endif()
+endfunction()
+
+run(${CMAKE_COMMAND} --install ${GLINT_BINARY_DIR} --prefix ${work}/prefix)
+run(${CMAKE_COMMAND} -S ${GLINT_SOURCE_DIR}/tests/consumer/project -B ${work}/installed
+    -DCMAKE_PREFIX_PATH=${work}/prefix -DCMAKE_BUILD_TYPE=Release)
+run(${CMAKE_COMMAND} --build ${work}/installed)
+run(${work}/installed/consumer ${work}/installed.png)
+
+run(${CMAKE_COMMAND} -S ${GLINT_SOURCE_DIR}/tests/consumer/project -B ${work}/subdirectory
+    -DGLINT_SOURCE_DIR=${GLINT_SOURCE_DIR} -DCMAKE_BUILD_TYPE=Release)
+run(${CMAKE_COMMAND} --build ${work}/subdirectory)
+run(${work}/subdirectory/consumer ${work}/subdirectory.png)
