@@ -1,10 +1,10 @@
-get_target_property(glm_includes glm::glm INTERFACE_INCLUDE_DIRECTORIES)
-set(includes -I${PROJECT_SOURCE_DIR}/include)
-foreach(dir ${glm_includes})
-  list(APPEND includes -isystem ${dir})
-endforeach()
+# A program that must not compile: building it is the test, and it passes only if the build
+# fails with a message naming the violated concept.
+add_executable(glint-compile-fail-wrong-policy EXCLUDE_FROM_ALL
+  ${CMAKE_CURRENT_LIST_DIR}/wrong_policy.cpp)
+target_link_libraries(glint-compile-fail-wrong-policy PRIVATE glint::glint)
 add_test(NAME "compile-fail: a wrong policy names its concept"
-  COMMAND ${CMAKE_COMMAND} -DCOMPILER=${CMAKE_CXX_COMPILER} "-DINCLUDES=${includes}"
-          -DSOURCE=${CMAKE_CURRENT_LIST_DIR}/wrong_policy.cpp -DCONCEPT=FresnelModel
-          -P ${CMAKE_CURRENT_LIST_DIR}/check_compile_fail.cmake)
+  COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR}
+          -DTARGET=glint-compile-fail-wrong-policy -DCONCEPT=FresnelModel
+          -P ${CMAKE_CURRENT_LIST_DIR}/expect_build_failure.cmake)
 set_tests_properties("compile-fail: a wrong policy names its concept" PROPERTIES LABELS compile)

@@ -5,3 +5,4 @@
 using broken = glint::Config<glint::IndependentSampler, glint::ReportMaterialModel, int,
                              glint::GaussianAntialiasing, glint::BuiltinShading>;
 broken::fresnel* use = nullptr;
+int main() {}

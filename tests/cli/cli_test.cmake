@@ -1,0 +1,47 @@
+# End-to-end checks of the glint-render command line: exit codes, messages, outputs.
+if(NOT TARGET glint-render)
+  return()
+endif()
+set(glint_cli_scenes ${CMAKE_CURRENT_LIST_DIR}/scenes)
+
+function(glint_cli_test name)
+  cmake_parse_arguments(arg "EXPECT_OUTPUT" "STATUS;STDERR;STDOUT;OUTPUT" "ARGS" ${ARGN})
+  # Arguments travel as one '|'-joined string: a ';' list would be split by add_test.
+  string(REPLACE ";" "|" joined_args "${arg_ARGS}")
+  set(defines -DPROGRAM=$<TARGET_FILE:glint-render> "-DARGS=${joined_args}"
+      -DEXPECT_STATUS=${arg_STATUS} -DSCRATCH=${PROJECT_BINARY_DIR}/cli-test/${name})
+  if(DEFINED arg_STDERR)
+    list(APPEND defines "-DEXPECT_STDERR=${arg_STDERR}")
+  endif()
+  if(DEFINED arg_STDOUT)
+    list(APPEND defines "-DEXPECT_STDOUT=${arg_STDOUT}")
+  endif()
+  if(DEFINED arg_OUTPUT)
+    list(APPEND defines -DOUTPUT=${arg_OUTPUT} -DEXPECT_OUTPUT=${arg_EXPECT_OUTPUT})
+  endif()
+  add_test(NAME "cli: ${name}" COMMAND ${CMAKE_COMMAND} ${defines}
+           -P ${CMAKE_CURRENT_LIST_DIR}/run_cli.cmake)
+  set_tests_properties("cli: ${name}" PROPERTIES LABELS cli)
+endfunction()
+
+glint_cli_test(help STATUS 0 STDOUT "usage: glint-render SCENE" ARGS --help)
+glint_cli_test(no-arguments STATUS 2 STDERR "no scene file given")
+glint_cli_test(unknown-option STATUS 2 STDERR "unknown option '--frobnicate'"
+               ARGS ${glint_cli_scenes}/tiny.scene --frobnicate)
+glint_cli_test(bad-spp STATUS 2 STDERR "--spp expects an integer"
+               ARGS ${glint_cli_scenes}/tiny.scene --spp 12x)
+glint_cli_test(zero-width STATUS 2 STDERR "--width expects an integer"
+               ARGS ${glint_cli_scenes}/tiny.scene --width 0)
+glint_cli_test(missing-value STATUS 2 STDERR "--seed needs a value"
+               ARGS ${glint_cli_scenes}/tiny.scene --seed)
+glint_cli_test(missing-scene STATUS 1 STDERR "no-such.scene.*cannot open"
+               ARGS no-such.scene -o out.png OUTPUT out.png)
+glint_cli_test(overlapping-glass STATUS 1
+               STDERR "overlapping-glass.scene:[0-9]+: error: transparent spheres at lines [0-9]+ and [0-9]+"
+               ARGS ${glint_cli_scenes}/overlapping-glass.scene -o out.png OUTPUT out.png)
+glint_cli_test(missing-output-directory STATUS 1 STDERR "directory .* does not exist"
+               ARGS ${glint_cli_scenes}/tiny.scene -o nowhere/out.png)
+glint_cli_test(renders STATUS 0 STDERR "Mrays/s" EXPECT_OUTPUT OUTPUT out.png
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --spp 2)
+glint_cli_test(quiet STATUS 0 STDERR "^$" EXPECT_OUTPUT OUTPUT tiny.png
+               ARGS ${glint_cli_scenes}/tiny.scene --quiet --threads 1)
