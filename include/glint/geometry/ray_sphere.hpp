@@ -31,8 +31,8 @@ inline bool intersect_sphere(const Vec3& origin, const Vec3& direction, const Ve
   const float q = -(b + std::copysign(std::sqrt(discriminant), b));
   const float t0 = c / q;
   const float t1 = q;
-  roots.near = std::fmin(t0, t1);
-  roots.far = std::fmax(t0, t1);
+  roots.near = min_of(t0, t1);
+  roots.far = max_of(t0, t1);
   return true;
 }
 

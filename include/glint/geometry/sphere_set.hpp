@@ -30,36 +30,38 @@ class SphereSet {
 
   SphereSet() = default;
 
-  void add(const Vec3& center, float radius) {
+  /// Adds a sphere known to the rest of the scene as `id` (what hits report, and what
+  /// Ray::origin_sphere refers to).
+  void add(const Vec3& center, float radius, std::uint32_t id) {
     const std::size_t slot = count_;
     if (slot == cx_.size()) grow();
     cx_[slot] = center.x;
     cy_[slot] = center.y;
     cz_[slot] = center.z;
     r2_[slot] = radius * radius;
+    ids_[slot] = static_cast<std::int32_t>(id);
     ++count_;
   }
 
   std::size_t size() const { return count_; }
-  Vec3 center(std::uint32_t i) const { return {cx_[i], cy_[i], cz_[i]}; }
-  float radius_squared(std::uint32_t i) const { return r2_[i]; }
+  Vec3 center(std::size_t slot) const { return {cx_[slot], cy_[slot], cz_[slot]}; }
+  float radius_squared(std::size_t slot) const { return r2_[slot]; }
+  std::uint32_t id(std::size_t slot) const { return static_cast<std::uint32_t>(ids_[slot]); }
 
   /// Nearest hit with t in (ray.t_min, min(ray.t_max, hit.t)); updates `hit` and returns true
-  /// if one is found. Handles the ray's origin sphere by the exact rule of Ray.
+  /// if one is found. The ray's origin sphere is skipped: the caller handles it (see Ray).
   bool closest_hit(const Ray& ray, SphereHit& hit) const {
 #ifdef GLINT_SPHERE_SET_AVX2
-    bool found = closest_hit_avx2(ray, hit);
+    return closest_hit_avx2(ray, hit);
 #else
-    bool found = closest_hit_scalar(ray, hit);
+    return closest_hit_scalar(ray, hit);
 #endif
-    return origin_sphere_hit(ray, hit) || found;
   }
 
-  /// Whether anything blocks the ray in (ray.t_min, ray.t_max).
+  /// Whether anything but the origin sphere blocks the ray in (ray.t_min, ray.t_max).
   bool any_hit(const Ray& ray) const {
     SphereHit hit;
     hit.t = ray.t_max;
-    if (origin_sphere_hit(ray, hit)) return true;
 #ifdef GLINT_SPHERE_SET_AVX2
     return closest_hit_avx2(ray, hit, /*stop_at_first=*/true);
 #else
@@ -69,17 +71,17 @@ class SphereSet {
 
   /// The portable reference kernel; also what builds without AVX2 use.
   bool closest_hit_scalar(const Ray& ray, SphereHit& hit, bool stop_at_first = false) const {
-    float best = std::fmin(ray.t_max, hit.t);
+    float best = min_of(ray.t_max, hit.t);
     std::uint32_t best_index = kNoSphere;
-    for (std::uint32_t i = 0; i < count_; ++i) {
-      if (i == ray.origin_sphere) continue;
+    for (std::size_t i = 0; i < count_; ++i) {
+      if (id(i) == ray.origin_sphere) continue;
       SphereRoots roots;
       if (!intersect_sphere(ray.origin, ray.direction, center(i), std::sqrt(r2_[i]), roots))
         continue;
       const float t = roots.near > ray.t_min ? roots.near : roots.far;
       if (t > ray.t_min && t < best) {
         best = t;
-        best_index = i;
+        best_index = id(i);
         if (stop_at_first) break;
       }
     }
@@ -98,9 +100,8 @@ class SphereSet {
     const __m256 t_min = _mm256_set1_ps(ray.t_min);
     const __m256 zero = _mm256_setzero_ps();
     const __m256 sign_mask = _mm256_set1_ps(-0.0f);
-    const __m256i lane_ids = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     const __m256i excluded = _mm256_set1_epi32(static_cast<int>(ray.origin_sphere));
-    __m256 best = _mm256_set1_ps(std::fmin(ray.t_max, hit.t));
+    __m256 best = _mm256_set1_ps(min_of(ray.t_max, hit.t));
     __m256i best_index = _mm256_set1_epi32(-1);
     for (std::size_t base = 0; base < count_; base += kLanes) {
       const __m256 fx = _mm256_sub_ps(ox, _mm256_load_ps(&cx_[base]));
@@ -114,8 +115,8 @@ class SphereSet {
       const __m256 perp2 = _mm256_fmadd_ps(px, px, _mm256_fmadd_ps(py, py, _mm256_mul_ps(pz, pz)));
       const __m256 discriminant = _mm256_sub_ps(r2, perp2);
       const __m256 has_roots = _mm256_cmp_ps(discriminant, zero, _CMP_GE_OQ);
-      const __m256 c =
-          _mm256_sub_ps(_mm256_fmadd_ps(fx, fx, _mm256_fmadd_ps(fy, fy, _mm256_mul_ps(fz, fz))), r2);
+      const __m256 c = _mm256_sub_ps(
+          _mm256_fmadd_ps(fx, fx, _mm256_fmadd_ps(fy, fy, _mm256_mul_ps(fz, fz))), r2);
       const __m256 root = _mm256_sqrt_ps(_mm256_max_ps(discriminant, zero));
       // q = -(b + copysign(root, b))
       const __m256 signed_root = _mm256_or_ps(root, _mm256_and_ps(b, sign_mask));
@@ -125,10 +126,9 @@ class SphereSet {
       const __m256 t_far = _mm256_max_ps(t0, q);
       const __m256 near_ok = _mm256_cmp_ps(t_near, t_min, _CMP_GT_OQ);
       const __m256 t = _mm256_blendv_ps(t_far, t_near, near_ok);
-      const __m256i ids = _mm256_add_epi32(lane_ids, _mm256_set1_epi32(static_cast<int>(base)));
-      const __m256 not_excluded =
-          _mm256_castsi256_ps(_mm256_xor_si256(_mm256_cmpeq_epi32(ids, excluded),
-                                               _mm256_set1_epi32(-1)));
+      const __m256i ids = _mm256_load_si256(reinterpret_cast<const __m256i*>(&ids_[base]));
+      const __m256 not_excluded = _mm256_castsi256_ps(
+          _mm256_xor_si256(_mm256_cmpeq_epi32(ids, excluded), _mm256_set1_epi32(-1)));
       const __m256 closer = _mm256_and_ps(
           _mm256_and_ps(has_roots, not_excluded),
           _mm256_and_ps(_mm256_cmp_ps(t, t_min, _CMP_GT_OQ), _mm256_cmp_ps(t, best, _CMP_LT_OQ)));
@@ -138,12 +138,13 @@ class SphereSet {
           _mm256_blendv_ps(_mm256_castsi256_ps(best_index), _mm256_castsi256_ps(ids), closer));
       if (stop_at_first) break;
     }
-    // Horizontal minimum; among equal distances the lowest index wins, as in the scalar loop.
+    // Horizontal minimum; among equal distances the lowest id wins, as in the scalar loop
+    // (whose ids ascend within a set).
     alignas(32) float ts[kLanes];
     alignas(32) std::int32_t indices[kLanes];
     _mm256_store_ps(ts, best);
     _mm256_store_si256(reinterpret_cast<__m256i*>(indices), best_index);
-    float best_t = std::fmin(ray.t_max, hit.t);
+    float best_t = min_of(ray.t_max, hit.t);
     std::int32_t best_i = -1;
     for (std::size_t lane = 0; lane < kLanes; ++lane) {
       if (indices[lane] < 0) continue;
@@ -160,17 +161,6 @@ class SphereSet {
 #endif
 
  private:
-  // A ray leaving its origin sphere outwards cannot meet it again; heading inwards it meets
-  // the far side only.
-  bool origin_sphere_hit(const Ray& ray, SphereHit& hit) const {
-    if (ray.origin_sphere == kNoSphere || !ray.heads_into_origin_sphere) return false;
-    const float t = far_side_distance(ray.origin, ray.direction, center(ray.origin_sphere));
-    if (!(t > ray.t_min && t < std::fmin(ray.t_max, hit.t))) return false;
-    hit.t = t;
-    hit.sphere = ray.origin_sphere;
-    return true;
-  }
-
   void grow() {
     // Padding lanes hold spheres of squared radius -1: their discriminant is always negative,
     // so no ray ever hits them.
@@ -179,6 +169,7 @@ class SphereSet {
     cy_.resize(new_size, 0.0f);
     cz_.resize(new_size, 0.0f);
     r2_.resize(new_size, -1.0f);
+    ids_.resize(new_size, -1);
   }
 
   template <typename T>
@@ -196,6 +187,7 @@ class SphereSet {
   using FloatArray = std::vector<float, AlignedAllocator<float>>;
 
   FloatArray cx_, cy_, cz_, r2_;
+  std::vector<std::int32_t, AlignedAllocator<std::int32_t>> ids_;
   std::size_t count_ = 0;
 };
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "glint/geometry/sphere_bvh.hpp"
 #include "glint/scene/scene_description.hpp"
 #include "glint/scene/scene_error.hpp"
 
@@ -46,8 +47,8 @@ struct InclusionTree {
 };
 
 /// Builds the tree; throws SceneError naming both lines if two transparent spheres partially
-/// overlap. Candidate pairs come from a sweep over the spheres' x extents, so scenes of spread
-/// out spheres cost about n log n rather than n^2.
+/// overlap. Candidate pairs come from a bounding volume hierarchy over the transparent spheres,
+/// so the cost is about n log n plus the number of nested or touching pairs, not n^2.
 inline InclusionTree build_inclusion_tree(const SceneDescription& scene) {
   const auto& spheres = scene.spheres;
   const std::size_t n = spheres.size();
@@ -55,50 +56,44 @@ inline InclusionTree build_inclusion_tree(const SceneDescription& scene) {
   tree.parent.assign(n, kNoParent);
   tree.outside_ior.assign(n, scene.medium_ior);
 
-  std::vector<std::uint32_t> by_min_x(n);
-  std::iota(by_min_x.begin(), by_min_x.end(), 0u);
-  const auto min_x = [&](std::uint32_t i) { return double(spheres[i].center.x) - spheres[i].radius; };
-  const auto max_x = [&](std::uint32_t i) { return double(spheres[i].center.x) + spheres[i].radius; };
-  std::sort(by_min_x.begin(), by_min_x.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return min_x(a) < min_x(b) || (min_x(a) == min_x(b) && a < b);
-  });
+  std::vector<SphereBvh::Input> glass;
+  for (std::size_t i = 0; i < n; ++i)
+    if (spheres[i].material.is_transparent())
+      glass.push_back({spheres[i].center, spheres[i].radius, static_cast<std::uint32_t>(i)});
+  if (glass.empty()) return tree;
+  const SphereBvh hierarchy(std::move(glass));
 
-  // Offer `container` as the medium around `inner`; keep the smallest radius (containers of one
-  // sphere are nested among themselves, so the smallest is the innermost). Ties go to the lower
-  // index so the result does not depend on the sweep order.
-  const auto offer = [&](std::uint32_t inner, std::uint32_t container) {
-    std::uint32_t& current = tree.parent[inner];
-    if (current == kNoParent || spheres[container].radius < spheres[current].radius ||
-        (spheres[container].radius == spheres[current].radius && container < current))
-      current = container;
-  };
-
-  std::vector<std::uint32_t> active;  // spheres whose x extent may still overlap later ones
-  for (const std::uint32_t i : by_min_x) {
-    const double start = min_x(i);
-    std::erase_if(active, [&](std::uint32_t j) { return max_x(j) < start; });
-    for (const std::uint32_t j : active) {
-      const SphereDescription& a = spheres[i];
-      const SphereDescription& b = spheres[j];
-      const bool a_glass = a.material.is_transparent(), b_glass = b.material.is_transparent();
-      if (!a_glass && !b_glass) continue;
-      const SphereRelation relation = classify_spheres(a, b);
-      if (relation == SphereRelation::overlapping) {
-        if (a_glass && b_glass) {
-          const SphereDescription& first = a.line <= b.line ? a : b;
-          const SphereDescription& second = a.line <= b.line ? b : a;
-          throw SceneError(scene.source, second.line,
-                           "transparent spheres at lines " + std::to_string(first.line) +
-                               " and " + std::to_string(second.line) +
-                               " partially overlap; transparent spheres must be disjoint or "
-                               "nested");
-        }
-        continue;  // an opaque sphere may cut through glass
+  for (std::size_t index = 0; index < n; ++index) {
+    const auto i = static_cast<std::uint32_t>(index);
+    const SphereDescription& inner = spheres[i];
+    const Vec3 reach(inner.radius);
+    std::uint32_t& parent = tree.parent[i];
+    hierarchy.for_each_near_box(inner.center - reach, inner.center + reach, [&](std::uint32_t j) {
+      if (j == i) return;
+      const SphereDescription& outer = spheres[j];
+      switch (classify_spheres(inner, outer)) {
+        case SphereRelation::first_inside_second:
+          // Containers of one sphere are nested among themselves, so the smallest is the
+          // innermost; ties (equal radii can only be coincident spheres, rejected below) aside.
+          if (parent == kNoParent || outer.radius < spheres[parent].radius ||
+              (outer.radius == spheres[parent].radius && j < parent))
+            parent = j;
+          return;
+        case SphereRelation::overlapping:
+          if (!inner.material.is_transparent()) return;  // opaque spheres may cut through glass
+          {
+            const SphereDescription& first = inner.line <= outer.line ? inner : outer;
+            const SphereDescription& second = inner.line <= outer.line ? outer : inner;
+            throw SceneError(scene.source, second.line,
+                             "transparent spheres at lines " + std::to_string(first.line) +
+                                 " and " + std::to_string(second.line) +
+                                 " partially overlap; transparent spheres must be disjoint or "
+                                 "nested");
+          }
+        default:
+          return;
       }
-      if (relation == SphereRelation::first_inside_second && b_glass) offer(i, j);
-      if (relation == SphereRelation::second_inside_first && a_glass) offer(j, i);
-    }
-    active.push_back(i);
+    });
   }
 
   for (std::size_t i = 0; i < n; ++i)
