@@ -103,6 +103,7 @@ class SphereSet {
     const __m256i excluded = _mm256_set1_epi32(static_cast<int>(ray.origin_sphere));
     __m256 best = _mm256_set1_ps(min_of(ray.t_max, hit.t));
     __m256i best_index = _mm256_set1_epi32(-1);
+    bool found_any = false;
     for (std::size_t base = 0; base < count_; base += kLanes) {
       const __m256 fx = _mm256_sub_ps(ox, _mm256_load_ps(&cx_[base]));
       const __m256 fy = _mm256_sub_ps(oy, _mm256_load_ps(&cy_[base]));
@@ -133,26 +134,27 @@ class SphereSet {
           _mm256_and_ps(has_roots, not_excluded),
           _mm256_and_ps(_mm256_cmp_ps(t, t_min, _CMP_GT_OQ), _mm256_cmp_ps(t, best, _CMP_LT_OQ)));
       if (_mm256_movemask_ps(closer) == 0) continue;
+      found_any = true;
       best = _mm256_blendv_ps(best, t, closer);
       best_index = _mm256_castps_si256(
           _mm256_blendv_ps(_mm256_castsi256_ps(best_index), _mm256_castsi256_ps(ids), closer));
       if (stop_at_first) break;
     }
-    // Horizontal minimum; among equal distances the lowest id wins, as in the scalar loop
-    // (whose ids ascend within a set).
-    alignas(32) float ts[kLanes];
+    if (!found_any) return false;
+    // Horizontal minimum by three permute/min steps; then the lane holding it. Exact ties
+    // between lanes (coincident spheres) take the lowest id, as the scalar loop does.
+    __m256 smallest = _mm256_min_ps(best, _mm256_permute_ps(best, 0b10110001));
+    smallest = _mm256_min_ps(smallest, _mm256_permute_ps(smallest, 0b01001110));
+    smallest = _mm256_min_ps(smallest, _mm256_permute2f128_ps(smallest, smallest, 1));
+    const int lanes = _mm256_movemask_ps(_mm256_cmp_ps(best, smallest, _CMP_EQ_OQ));
     alignas(32) std::int32_t indices[kLanes];
-    _mm256_store_ps(ts, best);
     _mm256_store_si256(reinterpret_cast<__m256i*>(indices), best_index);
-    float best_t = min_of(ray.t_max, hit.t);
     std::int32_t best_i = -1;
-    for (std::size_t lane = 0; lane < kLanes; ++lane) {
-      if (indices[lane] < 0) continue;
-      if (ts[lane] < best_t || (ts[lane] == best_t && indices[lane] < best_i)) {
-        best_t = ts[lane];
-        best_i = indices[lane];
-      }
+    for (int mask = lanes; mask != 0; mask &= mask - 1) {
+      const std::int32_t candidate = indices[__builtin_ctz(static_cast<unsigned>(mask))];
+      if (candidate >= 0 && (best_i < 0 || candidate < best_i)) best_i = candidate;
     }
+    const float best_t = _mm256_cvtss_f32(smallest);
     if (best_i < 0) return false;
     hit.t = best_t;
     hit.sphere = static_cast<std::uint32_t>(best_i);

@@ -23,9 +23,11 @@ class SceneError : public std::runtime_error {
 
  private:
   static std::string format(const std::string& source, int line, const std::string& problem) {
-    std::string where = source.empty() ? std::string("<scene>") : source;
-    if (line > 0) where += ":" + std::to_string(line);
-    return where + ": error: " + problem;
+    // Built by appending: GCC 12 warns falsely (-Wrestrict) on `"literal" + std::string`.
+    std::string text = source.empty() ? std::string("<scene>") : source;
+    if (line > 0) text.append(":").append(std::to_string(line));
+    text.append(": error: ").append(problem);
+    return text;
   }
 
   std::string source_;
