@@ -20,10 +20,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <functional>
-#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -45,7 +43,7 @@ namespace glint {
 /// fed by mistake usually trips it (or the NUL check) on its first line.
 inline constexpr std::size_t kMaxSceneLineLength = 1 << 16;
 /// read_scene_file refuses larger files, so that a pipe or device that never ends
-/// (/dev/zero, `yes |`) cannot exhaust memory. Ten million spheres fit in about 600 MB.
+/// (/dev/zero, `yes |`) cannot exhaust memory. Ten million spheres take about 700 MB.
 inline constexpr std::uintmax_t kMaxSceneFileSize = std::uintmax_t{1} << 30;
 
 namespace detail::scene_reader {
@@ -153,6 +151,8 @@ class Parser {
   SceneDescription parse(std::string_view text) {
     // A UTF-8 byte order mark, as some Windows editors write, is not part of the first line.
     if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
+    // Sized once: growing a vector of a million spheres by doubling costs more than this scan.
+    scene_.spheres.reserve(count_sphere_lines(text));
     std::size_t start = 0;
     while (start < text.size()) {
       std::size_t end = text.find('\n', start);
@@ -173,13 +173,32 @@ class Parser {
     int line;
   };
 
+  /// An upper bound on the number of spheres: lines starting with "sphere" that are long
+  /// enough to hold a valid one. The length test keeps a bogus file from reserving more than
+  /// a valid file of its size would need.
+  static std::size_t count_sphere_lines(std::string_view text) {
+    constexpr std::size_t kShortestSphere = sizeof("sphere center=0,0,0 radius=1") - 1;
+    std::size_t count = 0;
+    std::size_t start = 0;
+    while (start < text.size()) {
+      while (start < text.size() && is_space(text[start]))
+        ++start;
+      std::size_t end = text.find('\n', start);
+      if (end == std::string_view::npos) end = text.size();
+      if (end - start >= kShortestSphere && text.substr(start, 6) == "sphere") ++count;
+      start = end + 1;
+    }
+    return count;
+  }
+
   [[noreturn]] void fail(const std::string& problem) const {
     throw SceneError(scene_.source, line_, problem);
   }
 
   void parse_line(std::string_view line) {
     if (line.size() > kMaxSceneLineLength)
-      fail("line is longer than " + std::to_string(kMaxSceneLineLength) + " characters");
+      fail(detail::concat(
+          {"line is longer than ", std::to_string(kMaxSceneLineLength), " characters"}));
     if (line.find('\0') != std::string_view::npos)
       fail("line contains a NUL byte (is this a text file?)");
     if (line.ends_with('\r')) line.remove_suffix(1);  // CRLF line endings
@@ -208,15 +227,16 @@ class Parser {
     if (keyword == "antialias") return read_antialias(rest);
     if (keyword == "background") return read_background(rest);
     if (keyword == "medium") return read_medium(rest);
-    fail("unknown statement " + quoted(keyword) + " (expected one of: " + join(kStatements) + ")");
+    fail(detail::concat(
+        {"unknown statement ", quoted(keyword), " (expected one of: ", join(kStatements), ")"}));
   }
 
   /// Statements that configure the whole scene may appear once; `line` is where the scene
   /// records the statement, still 0 if it has not been seen.
   void once(std::string_view statement, int& line) {
     if (line != 0)
-      fail("duplicate '" + std::string(statement) + "' statement (first given at line " +
-           std::to_string(line) + ")");
+      fail(detail::concat({"duplicate '", statement, "' statement (first given at line ",
+                           std::to_string(line), ")"}));
     line = line_;
   }
 
@@ -226,19 +246,20 @@ class Parser {
     for (std::string_view token : tokens) {
       const std::size_t equals = token.find('=');
       if (equals == std::string_view::npos)
-        fail("expected key=value, got " + quoted(token) +
-             " (no spaces are allowed around '=' or in vectors)");
+        fail(detail::concat({"expected key=value, got ", quoted(token),
+                             " (no spaces are allowed around '=' or in vectors)"}));
       const std::string_view key = token.substr(0, equals);
       const std::string_view value = token.substr(equals + 1);
-      if (key.empty()) fail("missing key before '=' in " + quoted(token));
+      if (key.empty()) fail(detail::concat({"missing key before '=' in ", quoted(token)}));
       std::size_t index = 0;
       while (index < keys.size() && keys[index] != key)
         ++index;
       if (index == keys.size())
-        fail("unknown key " + quoted(key) + " for " + std::string(statement) +
-             " (valid keys: " + join(keys) + ")");
-      if (result.has(static_cast<int>(index))) fail("key '" + std::string(key) + "' given twice");
-      if (value.empty()) fail("missing value for '" + std::string(key) + "'");
+        fail(detail::concat(
+            {"unknown key ", quoted(key), " for ", statement, " (valid keys: ", join(keys), ")"}));
+      if (result.has(static_cast<int>(index)))
+        fail(detail::concat({"key '", key, "' given twice"}));
+      if (value.empty()) fail(detail::concat({"missing value for '", key, "'"}));
       result.values[index] = value;
       result.present |= 1u << index;
     }
@@ -248,8 +269,8 @@ class Parser {
   void require(const Fields& f, std::span<const std::string_view> keys, int key,
                std::string_view statement) const {
     if (!f.has(key))
-      fail("missing required key '" + std::string(keys[static_cast<std::size_t>(key)]) + "' for " +
-           std::string(statement));
+      fail(detail::concat(
+          {"missing required key '", keys[static_cast<std::size_t>(key)], "' for ", statement}));
   }
 
   float number(std::string_view key, std::string_view text) const {
@@ -268,16 +289,16 @@ class Parser {
       if (parsed && std::abs(wide) < 1.0) {
         value = static_cast<float>(wide);
       } else if (parsed) {
-        fail("'" + std::string(key) + "' must be a finite number, got " + quoted(text) +
-             " (too large for a 32-bit float)");
+        fail(detail::concat({"'", key, "' must be a finite number, got ", quoted(text),
+                             " (too large for a 32-bit float)"}));
       } else {
-        fail("number " + quoted(text) + " for '" + std::string(key) + "' is out of range");
+        fail(detail::concat({"number ", quoted(text), " for '", key, "' is out of range"}));
       }
     } else if (result.ec != std::errc{} || result.ptr != end) {
-      fail("bad number " + quoted(text) + " for '" + std::string(key) + "'");
+      fail(detail::concat({"bad number ", quoted(text), " for '", key, "'"}));
     }
     if (!std::isfinite(value))
-      fail("'" + std::string(key) + "' must be a finite number, got " + quoted(text));
+      fail(detail::concat({"'", key, "' must be a finite number, got ", quoted(text)}));
     return value;
   }
 
@@ -288,9 +309,9 @@ class Parser {
     const char* const end = digits.data() + digits.size();
     const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
     if (ec == std::errc::result_out_of_range)
-      fail("integer " + quoted(text) + " for '" + std::string(key) + "' is out of range");
+      fail(detail::concat({"integer ", quoted(text), " for '", key, "' is out of range"}));
     if (ec != std::errc{} || ptr != end)
-      fail("'" + std::string(key) + "' must be an integer, got " + quoted(text));
+      fail(detail::concat({"'", key, "' must be an integer, got ", quoted(text)}));
     return value;
   }
 
@@ -307,15 +328,15 @@ class Parser {
       start = comma + 1;
     }
     if (count != 3)
-      fail("'" + std::string(key) + "' needs 3 components x,y,z, got " + std::to_string(count) +
-           " in " + quoted(text));
+      fail(detail::concat({"'", key, "' needs 3 components x,y,z, got ", std::to_string(count),
+                           " in ", quoted(text)}));
     return Vec3(number(key, parts[0]), number(key, parts[1]), number(key, parts[2]));
   }
 
   float coefficient(std::string_view key, std::string_view text) const {
     const float value = number(key, text);
     if (!(value >= 0.0f && value <= 1.0f))
-      fail("'" + std::string(key) + "' must be in [0, 1], got " + quoted(text));
+      fail(detail::concat({"'", key, "' must be in [0, 1], got ", quoted(text)}));
     return value;
   }
 
@@ -333,13 +354,13 @@ class Parser {
     if (f.has(kDiffuse)) {
       m.diffuse = coefficient("diffuse", f[kDiffuse]);
     } else {
-      // Whatever the other lobes leave; in double and clamped so that mirror=0.7
-      // transparent=0.3 gives 0, not -3e-8.
+      // Whatever the other lobes leave. Float inputs such as 0.1 and 0.9 do not add up to
+      // exactly 1, so a remainder within rounding of 0 is taken to mean 0.
       const double rest = 1.0 - double(m.mirror) - double(m.transparent);
       if (rest < -1e-5)
-        fail("mirror + transparent must not exceed 1, got " +
-             detail::format_number(m.mirror + m.transparent));
-      m.diffuse = rest > 0.0 ? static_cast<float>(rest) : 0.0f;
+        fail(detail::concat({"mirror + transparent must not exceed 1, got ",
+                             detail::format_number(m.mirror + m.transparent)}));
+      m.diffuse = rest > 1e-6 ? static_cast<float>(rest) : 0.0f;
     }
     detail::check_material(scene_, m, line_);
     return m;
@@ -407,12 +428,12 @@ class Parser {
       fail("material needs a name before its keys (material NAME key=value ...)");
     const std::string_view name = tokens[0];
     if (!is_identifier(name))
-      fail("invalid material name " + quoted(name) +
-           " (use letters, digits, '_' and '-', not starting with a digit)");
+      fail(detail::concat({"invalid material name ", quoted(name),
+                           " (use letters, digits, '_' and '-', not starting with a digit)"}));
     const Fields f = fields("material", kMaterialKeys, tokens.subspan(1));
     if (const auto it = materials_.find(name); it != materials_.end())
-      fail("duplicate material '" + std::string(name) + "' (first defined at line " +
-           std::to_string(it->second.line) + ")");
+      fail(detail::concat({"duplicate material '", name, "' (first defined at line ",
+                           std::to_string(it->second.line), ")"}));
     const Material m = material_from(f);
     materials_.emplace(std::string(name), NamedMaterial{m, line_});
   }
@@ -425,20 +446,21 @@ class Parser {
     sphere.line = line_;
     sphere.center = vec3("center", f[kCenter]);
     sphere.radius = number("radius", f[kRadius]);
-    if (!(sphere.radius > 0.0f)) fail("sphere radius must be positive, got " + quoted(f[kRadius]));
+    if (!(sphere.radius > 0.0f))
+      fail(detail::concat({"sphere radius must be positive, got ", quoted(f[kRadius])}));
     if (f.has(kMaterialName)) {
       constexpr std::uint32_t kInlineKeys = (1u << kMaterialKeyCount) - 1u;
       if (f.present & kInlineKeys) {
         int first = 0;
         while (!f.has(first))
           ++first;
-        fail("sphere has both material=" + std::string(f[kMaterialName]) + " and inline key '" +
-             std::string(kMaterialKeys[first]) + "'; use one or the other");
+        fail(detail::concat({"sphere has both material=", f[kMaterialName], " and inline key '",
+                             kMaterialKeys[first], "'; use one or the other"}));
       }
       const auto it = materials_.find(f[kMaterialName]);
       if (it == materials_.end())
-        fail("undefined material " + quoted(f[kMaterialName]) +
-             " (materials must be defined before the spheres that use them)");
+        fail(detail::concat({"undefined material ", quoted(f[kMaterialName]),
+                             " (materials must be defined before the spheres that use them)"}));
       sphere.material = it->second.material;
     } else {
       sphere.material = material_from(f);
@@ -456,7 +478,7 @@ class Parser {
       expected += (i == 0 ? "" : i + 1 == kShadingKindCount ? " or " : ", ");
       expected += to_string(kind);
     }
-    fail("unknown shading " + quoted(text) + " (expected " + expected + ")");
+    fail(detail::concat({"unknown shading ", quoted(text), " (expected ", expected, ")"}));
   }
 
   SceneDescription scene_;
@@ -483,18 +505,24 @@ inline SceneDescription read_scene_file(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(path, ec)) fail("cannot open file: it is a directory");
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(source.c_str(), "rb"),
                                                              &std::fclose);
-  if (!file) fail("cannot open file: " + std::string(std::strerror(errno)));
+  if (!file) fail(detail::concat({"cannot open file: ", std::generic_category().message(errno)}));
   std::string text;
+  // Reserved from the size of a regular file, so that a big scene is copied only once.
+  if (const std::uintmax_t size = std::filesystem::file_size(path, ec);
+      !ec && size <= kMaxSceneFileSize)
+    text.reserve(static_cast<std::size_t>(size));
   char buffer[1 << 16];
   while (true) {
     const std::size_t got = std::fread(buffer, 1, sizeof buffer, file.get());
     if (got > 0) {
       if (text.size() + got > kMaxSceneFileSize)
-        fail("file is larger than " + std::to_string(kMaxSceneFileSize >> 20) + " MiB");
+        fail(detail::concat(
+            {"file is larger than ", std::to_string(kMaxSceneFileSize >> 20), " MiB"}));
       text.append(buffer, got);
     }
     if (got < sizeof buffer) {
-      if (std::ferror(file.get())) fail("cannot read file: " + std::string(std::strerror(errno)));
+      if (std::ferror(file.get()))
+        fail(detail::concat({"cannot read file: ", std::generic_category().message(errno)}));
       break;
     }
   }

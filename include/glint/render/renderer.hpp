@@ -85,6 +85,8 @@ inline void check_settings(const RenderSettings& s) {
   const auto fail = [](const std::string& what) { throw std::invalid_argument("glint: " + what); };
   if (s.width < 1 || s.width > kMaxImageSide || s.height < 1 || s.height > kMaxImageSide)
     fail("image size must be between 1 and " + std::to_string(kMaxImageSide) + " pixels a side");
+  if (std::int64_t{s.width} * s.height > kMaxImagePixels)
+    fail("image size exceeds " + std::to_string(kMaxImagePixels) + " pixels");
   if (s.samples_per_pixel < 1 || s.samples_per_pixel > kMaxSamplesPerPixel)
     fail("samples per pixel must be between 1 and " + std::to_string(kMaxSamplesPerPixel));
   if (s.max_depth < 0 || s.max_depth > kMaxDepth)

@@ -9,7 +9,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 #include <glm/geometric.hpp>
@@ -30,6 +32,19 @@ inline constexpr int kMaxSamplesPerPixel = 1 << 20;
 inline constexpr int kMaxDepth = 1024;
 
 namespace detail {
+
+/// Joins message pieces. Unlike a chain of `"literal" + std::string(...)`, this does not set
+/// off GCC 12's false -Wrestrict warning (GCC bug 105651) when inlined.
+inline std::string concat(std::initializer_list<std::string_view> parts) {
+  std::size_t size = 0;
+  for (std::string_view part : parts)
+    size += part.size();
+  std::string out;
+  out.reserve(size);
+  for (std::string_view part : parts)
+    out.append(part);
+  return out;
+}
 
 /// Shortest round-trip text of a float; unlike std::to_string it ignores the C locale.
 inline std::string format_number(float value) {
@@ -52,18 +67,18 @@ inline void check_material(const SceneDescription& scene, const Material& m, int
   const char* names[] = {"diffuse", "mirror", "transparent"};
   for (int i = 0; i < 3; ++i) {
     if (!(coefficients[i] >= 0.0f && coefficients[i] <= 1.0f))
-      fail(std::string(names[i]) + " coefficient must be in [0, 1], got " +
-           format_number(coefficients[i]));
+      fail(concat(
+          {names[i], " coefficient must be in [0, 1], got ", format_number(coefficients[i])}));
   }
   // A small tolerance lets "diffuse=0.3 mirror=0.3 transparent=0.4" through despite rounding.
   if (m.diffuse + m.mirror + m.transparent > 1.0f + 1e-5f)
-    fail("diffuse + mirror + transparent must not exceed 1, got " +
-         format_number(m.diffuse + m.mirror + m.transparent));
+    fail(concat({"diffuse + mirror + transparent must not exceed 1, got ",
+                 format_number(m.diffuse + m.mirror + m.transparent)}));
   const Color* colors[] = {&m.diffuse_color, &m.mirror_color, &m.transparent_color};
   const char* color_names[] = {"color", "mirror_color", "transparent_color"};
   for (int i = 0; i < 3; ++i) {
     if (!finite(*colors[i]) || !non_negative(*colors[i]) || max_component(*colors[i]) > 1.0f)
-      fail(std::string(color_names[i]) + " components must be in [0, 1]");
+      fail(concat({color_names[i], " components must be in [0, 1]"}));
   }
   if (!finite(m.emission) || !non_negative(m.emission))
     fail("emission must be finite and non-negative");
@@ -77,17 +92,18 @@ inline void check_image(const SceneDescription& scene) {
   };
   if (image.width < 1 || image.width > kMaxImageSide || image.height < 1 ||
       image.height > kMaxImageSide)
-    fail("image size must be between 1 and " + std::to_string(kMaxImageSide) +
-         " pixels a side, got " + std::to_string(image.width) + "x" + std::to_string(image.height));
+    fail(concat({"image size must be between 1 and ", std::to_string(kMaxImageSide),
+                 " pixels a side, got ", std::to_string(image.width), "x",
+                 std::to_string(image.height)}));
   if (std::int64_t{image.width} * image.height > kMaxImagePixels)
-    fail("image size " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-         " exceeds " + std::to_string(kMaxImagePixels) + " pixels");
+    fail(concat({"image size ", std::to_string(image.width), "x", std::to_string(image.height),
+                 " exceeds ", std::to_string(kMaxImagePixels), " pixels"}));
   if (image.samples_per_pixel < 1 || image.samples_per_pixel > kMaxSamplesPerPixel)
-    fail("spp must be between 1 and " + std::to_string(kMaxSamplesPerPixel) + ", got " +
-         std::to_string(image.samples_per_pixel));
+    fail(concat({"spp must be between 1 and ", std::to_string(kMaxSamplesPerPixel), ", got ",
+                 std::to_string(image.samples_per_pixel)}));
   if (image.max_depth < 0 || image.max_depth > kMaxDepth)
-    fail("max_depth must be between 0 and " + std::to_string(kMaxDepth) + ", got " +
-         std::to_string(image.max_depth));
+    fail(concat({"max_depth must be between 0 and ", std::to_string(kMaxDepth), ", got ",
+                 std::to_string(image.max_depth)}));
 }
 
 inline void check_camera(const SceneDescription& scene) {
@@ -115,17 +131,17 @@ inline void check_camera(const SceneDescription& scene) {
       std::abs(glm::length(right_f) - 1.0f) > 1e-3f)
     fail("camera vectors are too large or too small to build a viewing basis in float");
   if (!(camera.fov_degrees > 0.0f && camera.fov_degrees < 180.0f))
-    fail("camera fov must be strictly between 0 and 180 degrees, got " +
-         format_number(camera.fov_degrees));
+    fail(concat({"camera fov must be strictly between 0 and 180 degrees, got ",
+                 format_number(camera.fov_degrees)}));
   if (!(camera.near >= 0.0f) || !std::isfinite(camera.near))
     fail("camera near must be finite and non-negative");
 }
 
 inline void check_antialias(const SceneDescription& scene) {
   if (!(scene.antialias_sigma >= 0.0f && scene.antialias_sigma <= 100.0f))
-    throw SceneError(
-        scene.source, scene.antialias_line,
-        "antialias sigma must be in [0, 100] pixels, got " + format_number(scene.antialias_sigma));
+    throw SceneError(scene.source, scene.antialias_line,
+                     concat({"antialias sigma must be in [0, 100] pixels, got ",
+                             format_number(scene.antialias_sigma)}));
 }
 
 inline void check_background(const SceneDescription& scene) {
@@ -136,8 +152,9 @@ inline void check_background(const SceneDescription& scene) {
 
 inline void check_medium(const SceneDescription& scene) {
   if (!(scene.medium_ior >= 1e-3f && scene.medium_ior <= 100.0f))
-    throw SceneError(scene.source, scene.medium_line,
-                     "medium ior must be in [0.001, 100], got " + format_number(scene.medium_ior));
+    throw SceneError(
+        scene.source, scene.medium_line,
+        concat({"medium ior must be in [0.001, 100], got ", format_number(scene.medium_ior)}));
 }
 
 inline void check_light(const SceneDescription& scene, const PointLight& light) {
@@ -157,7 +174,7 @@ inline void check_sphere(const SceneDescription& scene, const SphereDescription&
   };
   if (!finite(sphere.center)) fail("sphere center must be finite");
   if (!(sphere.radius > 0.0f) || !std::isfinite(sphere.radius))
-    fail("sphere radius must be positive and finite, got " + format_number(sphere.radius));
+    fail(concat({"sphere radius must be positive and finite, got ", format_number(sphere.radius)}));
   check_material(scene, sphere.material, sphere.line);
 }
 
