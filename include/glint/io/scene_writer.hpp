@@ -74,14 +74,16 @@ inline void append_key(std::string& out, const char* key, const Vec3& v) {
   append_vec(out, v, key);
 }
 
-/// The reader fills an omitted diffuse coefficient with 1 - mirror - transparent. Omitting it
-/// is safe only when that formula gives exactly the stored bits however it is evaluated
-/// (left to right, grouped, or in double), which holds for the common pure materials.
+/// The reader fills an omitted diffuse coefficient with 1 - mirror - transparent, snapping a
+/// remainder within rounding of 0 to 0. Omitting it is safe only when that formula gives
+/// exactly the stored bits however it is evaluated (left to right, grouped, or in double) and
+/// the value is clear of the snapping, which holds for the common pure materials.
 inline bool diffuse_is_implied(const Material& m) {
   const float left_to_right = 1.0f - m.mirror - m.transparent;
   const float grouped = 1.0f - (m.mirror + m.transparent);
   const auto in_double = static_cast<float>(1.0 - double(m.mirror) - double(m.transparent));
-  return same_bits(m.diffuse, left_to_right) && same_bits(m.diffuse, grouped) &&
+  const bool clear_of_zero = same_bits(m.diffuse, 0.0f) || m.diffuse >= 1e-4f;
+  return clear_of_zero && same_bits(m.diffuse, left_to_right) && same_bits(m.diffuse, grouped) &&
          same_bits(m.diffuse, in_double);
 }
 
