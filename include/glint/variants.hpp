@@ -25,13 +25,16 @@ using stochastic_material = report::with_material_model<StochasticMaterialModel>
 using russian_roulette = report::with_termination<RussianRoulette>;
 // Shading
 using uniform_shading = report::with_shading<UniformShading>;
+// Sampler
+using stratified_sampler = report::with_sampler<StratifiedSampler>;
+using sobol_sampler = report::with_sampler<SobolSampler>;
 
-using fast = Config<IndependentSampler, StochasticMaterialModel, ExactFresnel,
-                    GaussianAntialiasing, BuiltinShading, CosineHemisphere, RussianRoulette>;
+using fast = Config<IndependentSampler, StochasticMaterialModel, ExactFresnel, GaussianAntialiasing,
+                    BuiltinShading, CosineHemisphere, RussianRoulette>;
 
 /// Every named variant, for tests that must hold for all of them.
 using all = std::tuple<report, no_fresnel, schlick_fresnel, no_antialiasing, box_antialiasing,
-                       tent_antialiasing, cosine_hemisphere, stochastic_material,
-                       russian_roulette, uniform_shading, fast>;
+                       tent_antialiasing, cosine_hemisphere, stochastic_material, russian_roulette,
+                       uniform_shading, stratified_sampler, sobol_sampler, fast>;
 
 }  // namespace glint::variants

@@ -5,10 +5,13 @@ endif()
 set(glint_cli_scenes ${CMAKE_CURRENT_LIST_DIR}/scenes)
 
 function(glint_cli_test name)
-  cmake_parse_arguments(arg "EXPECT_OUTPUT" "STATUS;STDERR;STDOUT;OUTPUT" "ARGS" ${ARGN})
+  cmake_parse_arguments(arg "EXPECT_OUTPUT" "STATUS;STDERR;STDOUT;OUTPUT;PROGRAM" "ARGS" ${ARGN})
+  if(NOT arg_PROGRAM)
+    set(arg_PROGRAM glint-render)
+  endif()
   # Arguments travel as one '|'-joined string: a ';' list would be split by add_test.
   string(REPLACE ";" "|" joined_args "${arg_ARGS}")
-  set(defines -DPROGRAM=$<TARGET_FILE:glint-render> "-DARGS=${joined_args}"
+  set(defines -DPROGRAM=$<TARGET_FILE:${arg_PROGRAM}> "-DARGS=${joined_args}"
       -DEXPECT_STATUS=${arg_STATUS} -DSCRATCH=${PROJECT_BINARY_DIR}/cli-test/${name})
   if(DEFINED arg_STDERR)
     list(APPEND defines "-DEXPECT_STDERR=${arg_STDERR}")
@@ -45,3 +48,14 @@ glint_cli_test(renders STATUS 0 STDERR "Mrays/s" EXPECT_OUTPUT OUTPUT out.png
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --spp 2)
 glint_cli_test(quiet STATUS 0 STDERR "^$" EXPECT_OUTPUT OUTPUT tiny.png
                ARGS ${glint_cli_scenes}/tiny.scene --quiet --threads 1)
+
+# A shading kind the variant's policy lacks is rejected when the scene is loaded; the example
+# program with its own policy renders the same scene.
+set(glint_striped_scene ${PROJECT_SOURCE_DIR}/examples/custom_shading/striped.scene)
+glint_cli_test(unsupported-shading STATUS 1
+               STDERR "striped.scene:[0-9]+: error: shading 'custom' is not supported"
+               ARGS ${glint_striped_scene} -o out.png OUTPUT out.png)
+if(TARGET glint-custom-shading)
+  glint_cli_test(custom-shading-example PROGRAM glint-custom-shading STATUS 0 EXPECT_OUTPUT
+                 OUTPUT striped.png ARGS ${glint_striped_scene} striped.png 2)
+endif()

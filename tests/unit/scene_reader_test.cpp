@@ -417,7 +417,7 @@ TEST_CASE("scene reader: semantic errors", "[scene_reader][errors]") {
   }
   SECTION("shading kinds") {
     expect_error("sphere center=0,0,0 radius=1 shading=stripes\n", 1,
-                 "unknown shading 'stripes' (expected uniform, octants or checker)");
+                 "unknown shading 'stripes' (expected uniform, octants, checker or custom)");
     expect_error("sphere center=0,0,0 radius=1 shading=Octants\n", 1, "unknown shading");
   }
   SECTION("the first error in the file is the one reported") {

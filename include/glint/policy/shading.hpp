@@ -16,8 +16,9 @@ struct UniformShading {
 };
 
 /// The built-in set: uniform, the report's eight-coloured sphere, and a checkerboard.
+/// `custom` is left to user-defined policies (see examples/custom_shading).
 struct BuiltinShading {
-  static bool supports(ShadingKind) { return true; }
+  static bool supports(ShadingKind kind) { return kind != ShadingKind::custom; }
 
   /// One colour per octant around the centre (octant bit i set where component i > 0),
   /// multiplied by the sphere's colour.
@@ -45,6 +46,7 @@ struct BuiltinShading {
       case ShadingKind::uniform: return base;
       case ShadingKind::octants: return octant_color(base, direction);
       case ShadingKind::checker: return checker_color(base, direction);
+      case ShadingKind::custom: return base;  // not supported: scenes using it are rejected
     }
     return base;
   }

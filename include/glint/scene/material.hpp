@@ -16,14 +16,16 @@ enum class ShadingKind : std::uint8_t {
   uniform,  ///< one colour over the whole sphere
   octants,  ///< the report's eight-coloured sphere: one colour per octant around the centre
   checker,  ///< a latitude/longitude checkerboard of the colour and its complement
+  custom,   ///< whatever the renderer variant's own shading policy defines (none built in)
 };
-inline constexpr int kShadingKindCount = 3;
+inline constexpr int kShadingKindCount = 4;
 
 constexpr std::string_view to_string(ShadingKind kind) {
   switch (kind) {
     case ShadingKind::uniform: return "uniform";
     case ShadingKind::octants: return "octants";
     case ShadingKind::checker: return "checker";
+    case ShadingKind::custom: return "custom";
   }
   return "?";
 }

@@ -1,0 +1,344 @@
+// Each rendering feature's own cost, in isolation: one call of the feature per item, on inputs
+// precomputed into arrays and cycled through, so that the compiler can neither fold the work
+// into constants nor hoist it out of the loop. Compare alternatives of one feature with each
+// other (items per second), not with whole-render figures: here everything sits in L1.
+//
+//   glint-features-bench --benchmark_min_time=0.1
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "glint/geometry/ray.hpp"
+#include "glint/geometry/ray_sphere.hpp"
+#include "glint/geometry/sphere_set.hpp"
+#include "glint/math/random.hpp"
+#include "glint/policy/antialiasing.hpp"
+#include "glint/policy/diffuse_sampling.hpp"
+#include "glint/policy/fresnel.hpp"
+#include "glint/policy/sampler.hpp"
+#include "glint/policy/shading.hpp"
+#include "glint/scene/inclusion_tree.hpp"
+#include "glint/scene/scene_description.hpp"
+
+namespace {
+
+using glint::Vec2;
+using glint::Vec3;
+
+// A power of two, so that cycling is a mask; 1024 inputs of a few floats stay in L1 and are
+// too many for the branch predictor to memorise.
+constexpr std::size_t kInputs = 1024;
+constexpr std::size_t kMask = kInputs - 1;
+
+float uniform(glint::Pcg32& rng, float lo, float hi) {
+  return lo + (hi - lo) * rng.next_float();
+}
+
+Vec3 random_unit_vector(glint::Pcg32& rng) {
+  const float z = uniform(rng, -1.0f, 1.0f);
+  const float phi = uniform(rng, 0.0f, 2.0f * glint::kPi);
+  const float r = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
+  return glm::normalize(Vec3(r * std::cos(phi), r * std::sin(phi), z));
+}
+
+std::vector<Vec2> random_unit_squares() {
+  glint::Pcg32 rng(1, 1);
+  std::vector<Vec2> u(kInputs);
+  for (Vec2& v : u)
+    v = {rng.next_float(), rng.next_float()};
+  return u;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ray/sphere intersection
+
+/// Rays from a shell around the origin aimed near it, and spheres around the origin: about
+/// half the pairs hit, so neither the hit nor the miss branch is predictable.
+struct RayInputs {
+  std::vector<glint::Ray> rays;
+  std::vector<Vec3> centers;
+  std::vector<float> radii;
+
+  RayInputs() : rays(kInputs), centers(kInputs), radii(kInputs) {
+    glint::Pcg32 rng(2, 2);
+    for (std::size_t i = 0; i < kInputs; ++i) {
+      const Vec3 origin = 20.0f * random_unit_vector(rng);
+      const Vec3 target =
+          4.0f * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+      rays[i].origin = origin;
+      rays[i].direction = glm::normalize(target - origin);
+      centers[i] = Vec3(uniform(rng, -3, 3), uniform(rng, -3, 3), uniform(rng, -3, 3));
+      radii[i] = uniform(rng, 0.5f, 3.0f);
+    }
+  }
+};
+
+void BM_IntersectSphere(benchmark::State& state) {
+  const RayInputs in;
+  std::size_t i = 0, hits = 0;
+  for (auto _ : state) {
+    const glint::Ray& ray = in.rays[i & kMask];
+    // Pair each ray with a sphere from elsewhere in the array so pairs do not repeat in step.
+    const std::size_t s = (i * 7 + 3) & kMask;
+    glint::SphereRoots roots{};
+    const bool hit =
+        glint::intersect_sphere(ray.origin, ray.direction, in.centers[s], in.radii[s], roots);
+    benchmark::DoNotOptimize(roots);
+    hits += hit;
+    ++i;
+  }
+  benchmark::DoNotOptimize(hits);
+  state.SetItemsProcessed(state.iterations());
+  state.counters["hit_rate"] = double(hits) / double(i);
+}
+BENCHMARK(BM_IntersectSphere);
+
+/// A set of spheres scattered in a cube, and rays through it.
+struct SphereSetInputs {
+  glint::SphereSet set;
+  std::vector<glint::Ray> rays;
+
+  explicit SphereSetInputs(std::size_t count) : rays(kInputs) {
+    glint::Pcg32 rng(3, count);
+    const float extent = 2.0f * std::cbrt(float(count));  // keeps density, so hit depths, similar
+    for (std::size_t i = 0; i < count; ++i)
+      set.add(Vec3(uniform(rng, -extent, extent), uniform(rng, -extent, extent),
+                   uniform(rng, -extent, extent)),
+              uniform(rng, 0.3f, 1.0f), static_cast<std::uint32_t>(i));
+    for (glint::Ray& ray : rays) {
+      ray.origin = 3.0f * extent * random_unit_vector(rng);
+      const Vec3 target = 0.5f * extent * random_unit_vector(rng);
+      ray.direction = glm::normalize(target - ray.origin);
+    }
+  }
+};
+
+void BM_SphereSetScalar(benchmark::State& state) {
+  const SphereSetInputs in(static_cast<std::size_t>(state.range(0)));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    glint::SphereHit hit;
+    benchmark::DoNotOptimize(in.set.closest_hit_scalar(in.rays[i++ & kMask], hit));
+    benchmark::DoNotOptimize(hit);
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["spheres/s"] = benchmark::Counter(
+      double(state.iterations()) * double(state.range(0)), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_SphereSetScalar)->Arg(8)->Arg(32)->Arg(256);
+
+#ifdef GLINT_SPHERE_SET_AVX2
+void BM_SphereSetAvx2(benchmark::State& state) {
+  const SphereSetInputs in(static_cast<std::size_t>(state.range(0)));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    glint::SphereHit hit;
+    benchmark::DoNotOptimize(in.set.closest_hit_avx2(in.rays[i++ & kMask], hit));
+    benchmark::DoNotOptimize(hit);
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["spheres/s"] = benchmark::Counter(
+      double(state.iterations()) * double(state.range(0)), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_SphereSetAvx2)->Arg(8)->Arg(32)->Arg(256);
+#endif
+
+// ---------------------------------------------------------------------------------------------
+// Samplers
+
+using Independent = glint::IndependentSampler;
+using Stratified = glint::StratifiedSampler;
+using Sobol = glint::SobolSampler;
+
+/// What the renderer does for a primary ray: start a pixel sample, draw the antialiasing pair.
+/// Pixels and sample indices advance like a tile's loop over a 16 spp image.
+template <glint::Sampler S>
+void BM_SamplerStartNext2d(benchmark::State& state) {
+  S sampler;
+  std::uint32_t i = 0;
+  for (auto _ : state) {
+    sampler.start(glint::PixelSample{(i >> 4) & 63u, i >> 10, i & 15u, 16, 12345});
+    benchmark::DoNotOptimize(sampler.next_2d());
+    ++i;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK_TEMPLATE(BM_SamplerStartNext2d, Independent);
+BENCHMARK_TEMPLATE(BM_SamplerStartNext2d, Stratified);
+BENCHMARK_TEMPLATE(BM_SamplerStartNext2d, Sobol);
+
+/// One start then eight 2D draws, as along a path of several bounces: items are draws, so
+/// this is the per-draw cost with start() amortised.
+template <glint::Sampler S>
+void BM_SamplerPath8x2d(benchmark::State& state) {
+  S sampler;
+  std::uint32_t i = 0;
+  for (auto _ : state) {
+    sampler.start(glint::PixelSample{(i >> 4) & 63u, i >> 10, i & 15u, 16, 12345});
+    for (int d = 0; d < 8; ++d)
+      benchmark::DoNotOptimize(sampler.next_2d());
+    ++i;
+  }
+  state.SetItemsProcessed(state.iterations() * 8);
+}
+BENCHMARK_TEMPLATE(BM_SamplerPath8x2d, Independent);
+BENCHMARK_TEMPLATE(BM_SamplerPath8x2d, Stratified);
+BENCHMARK_TEMPLATE(BM_SamplerPath8x2d, Sobol);
+
+// ---------------------------------------------------------------------------------------------
+// Diffuse bounce directions
+
+template <glint::DiffuseSampling D>
+void BM_HemisphereWarp(benchmark::State& state) {
+  const std::vector<Vec2> u = random_unit_squares();
+  std::size_t i = 0;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(D::sample(u[i++ & kMask]));
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK_TEMPLATE(BM_HemisphereWarp, glint::UniformHemisphere);
+BENCHMARK_TEMPLATE(BM_HemisphereWarp, glint::CosineHemisphere);
+
+// ---------------------------------------------------------------------------------------------
+// Fresnel
+
+/// Cosines over the whole range, half entering glass (1 -> 1.5) and half leaving it, where
+/// some fall past the critical angle.
+struct FresnelInputs {
+  std::vector<float> cosines, eta_incident, eta_transmitted;
+  FresnelInputs() : cosines(kInputs), eta_incident(kInputs), eta_transmitted(kInputs) {
+    glint::Pcg32 rng(4, 4);
+    for (std::size_t i = 0; i < kInputs; ++i) {
+      cosines[i] = rng.next_float();
+      const bool entering = rng.next_u32() & 1u;
+      eta_incident[i] = entering ? 1.0f : 1.5f;
+      eta_transmitted[i] = entering ? 1.5f : 1.0f;
+    }
+  }
+};
+
+template <glint::FresnelModel F>
+void BM_Fresnel(benchmark::State& state) {
+  const FresnelInputs in;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & kMask;
+    benchmark::DoNotOptimize(
+        F::reflectance(in.cosines[k], in.eta_incident[k], in.eta_transmitted[k]));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK_TEMPLATE(BM_Fresnel, glint::NoFresnel);
+BENCHMARK_TEMPLATE(BM_Fresnel, glint::SchlickFresnel);
+BENCHMARK_TEMPLATE(BM_Fresnel, glint::ExactFresnel);
+
+// ---------------------------------------------------------------------------------------------
+// Antialiasing jitter
+
+template <glint::AntiAliasing A>
+void BM_AntialiasingOffset(benchmark::State& state) {
+  const std::vector<Vec2> u = random_unit_squares();
+  std::size_t i = 0;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(A::offset(u[i++ & kMask], 0.5f));
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK_TEMPLATE(BM_AntialiasingOffset, glint::NoAntialiasing);
+BENCHMARK_TEMPLATE(BM_AntialiasingOffset, glint::GaussianAntialiasing);
+BENCHMARK_TEMPLATE(BM_AntialiasingOffset, glint::BoxAntialiasing);
+BENCHMARK_TEMPLATE(BM_AntialiasingOffset, glint::TentAntialiasing);
+
+// ---------------------------------------------------------------------------------------------
+// Shading dispatch
+
+/// Directions on the sphere and colours; the kinds argument fixes every sphere's kind, or
+/// (-1) mixes the three kinds at random so the switch cannot be predicted.
+struct ShadingInputs {
+  std::vector<Vec3> directions;
+  std::vector<glint::Color> colors;
+  std::vector<glint::ShadingKind> kinds;
+  explicit ShadingInputs(int kind) : directions(kInputs), colors(kInputs), kinds(kInputs) {
+    glint::Pcg32 rng(5, 5);
+    for (std::size_t i = 0; i < kInputs; ++i) {
+      directions[i] = random_unit_vector(rng);
+      colors[i] = glint::Color(rng.next_float(), rng.next_float(), rng.next_float());
+      kinds[i] = static_cast<glint::ShadingKind>(
+          kind >= 0 ? kind : int(rng.next_u32() % glint::kShadingKindCount));
+    }
+  }
+};
+
+template <glint::SphereShading H>
+void BM_Shading(benchmark::State& state) {
+  const ShadingInputs in(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & kMask;
+    benchmark::DoNotOptimize(H::color(in.kinds[k], in.colors[k], in.directions[k]));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+// UniformShading supports the uniform kind only; BuiltinShading: 0 uniform, 1 octants,
+// 2 checker, -1 a random mix.
+BENCHMARK_TEMPLATE(BM_Shading, glint::UniformShading)->ArgName("kind")->Arg(0);
+BENCHMARK_TEMPLATE(BM_Shading, glint::BuiltinShading)
+    ->ArgName("kind")
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(-1);
+
+// ---------------------------------------------------------------------------------------------
+// Inclusion tree
+
+glint::SphereDescription glass_sphere(Vec3 center, float radius, int line) {
+  glint::SphereDescription s;
+  s.center = center;
+  s.radius = radius;
+  s.material.diffuse = 0.0f;
+  s.material.transparent = 1.0f;
+  s.material.ior = 1.5f;
+  s.line = line;
+  return s;
+}
+
+/// Concentric glass shells (every pair nested: the sweep's worst case, n^2/2 pairs), or glass
+/// beads on a grid in a plane (disjoint: the sweep's best case).
+glint::SceneDescription inclusion_scene(std::size_t count, bool nested) {
+  glint::SceneDescription scene;
+  scene.spheres.reserve(count);
+  const auto side = static_cast<std::size_t>(std::ceil(std::sqrt(double(count))));
+  for (std::size_t i = 0; i < count; ++i) {
+    if (nested)
+      scene.spheres.push_back(glass_sphere(Vec3(0.0f), 1.0f + float(i), int(i) + 1));
+    else
+      scene.spheres.push_back(glass_sphere(
+          Vec3(3.0f * float(i % side), 3.0f * float(i / side), 0.0f), 1.0f, int(i) + 1));
+  }
+  return scene;
+}
+
+void BM_InclusionTreeBuild(benchmark::State& state) {
+  const auto count = static_cast<std::size_t>(state.range(0));
+  const bool nested = state.range(1) != 0;
+  const glint::SceneDescription scene = inclusion_scene(count, nested);
+  for (auto _ : state) {
+    glint::InclusionTree tree = glint::build_inclusion_tree(scene);
+    benchmark::DoNotOptimize(tree.outside_ior.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+  state.SetLabel(nested ? "nested" : "disjoint");
+}
+BENCHMARK(BM_InclusionTreeBuild)
+    ->ArgNames({"spheres", "nested"})
+    ->ArgsProduct({{100, 1000, 10000}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
