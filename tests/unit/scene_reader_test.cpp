@@ -594,9 +594,9 @@ TEST_CASE("scene reader: files", "[scene_reader][file]") {
     CHECK_THROWS_WITH(glint::read_scene_file(path),
                       StartsWith(path.string() + ":3: error: missing required key 'intensity'"));
   }
-  SECTION("the complete example of docs/scene-format.md") {
+  SECTION("the complete example of the README's scene format") {
     // Keeps the documentation honest: the block after the marker must parse as documented.
-    std::ifstream in(fs::path(GLINT_SOURCE_DIR) / "docs" / "scene-format.md");
+    std::ifstream in(fs::path(GLINT_SOURCE_DIR) / "README.md");
     REQUIRE(in);
     const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::size_t marker = doc.find("<!-- complete example -->");
