@@ -1,0 +1,160 @@
+// The pinhole camera: ray directions implied by the field of view and aspect ratio, the near
+// clipping plane, and the rejection of degenerate cameras by validate().
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "glint/render/camera.hpp"
+#include "glint/scene/validate.hpp"
+
+using glint::Vec2;
+using glint::Vec3;
+
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+
+glint::CameraDescription oblique_camera() {
+  glint::CameraDescription c;
+  c.position = {1.0f, 2.0f, 3.0f};
+  c.look_at = {4.0f, -1.0f, 7.0f};
+  c.up = {0.0f, 1.0f, 0.0f};
+  c.fov_degrees = 50.0f;
+  return c;
+}
+
+double angle_between(const Vec3& a, const Vec3& b) {
+  const double cosine = glm::dot(glm::normalize(a), glm::normalize(b));
+  return std::acos(std::clamp(cosine, -1.0, 1.0));
+}
+
+}  // namespace
+
+TEST_CASE("camera: the image centre looks at look_at", "[camera]") {
+  const glint::CameraDescription description = oblique_camera();
+  const Vec3 forward = glm::normalize(description.look_at - description.position);
+  for (const auto& [w, h] : {std::pair{320, 200}, std::pair{101, 77}, std::pair{1, 1}}) {
+    const glint::Camera camera(description, w, h);
+    const glint::Ray ray = camera.ray_through(Vec2(0.5f * float(w), 0.5f * float(h)));
+    CHECK(ray.origin == description.position);
+    CHECK(glm::length(ray.direction - forward) < 1e-6f);
+    CHECK(std::abs(glm::length(ray.direction) - 1.0f) < 1e-6f);
+    CHECK(ray.t_min == 0.0f);
+    CHECK(ray.origin_sphere == glint::kNoSphere);
+  }
+}
+
+TEST_CASE("camera: edge and corner rays have the angles implied by fov and aspect", "[camera]") {
+  const glint::CameraDescription description = oblique_camera();
+  const int width = 320, height = 200;
+  const glint::Camera camera(description, width, height);
+  const Vec3 forward = glm::normalize(description.look_at - description.position);
+  const Vec3 right = glm::normalize(glm::cross(forward, description.up));
+  const Vec3 up = glm::cross(right, forward);
+  const double half_fov = 0.5 * description.fov_degrees * kDegree;
+  const double aspect = double(width) / height;
+
+  // Top edge, middle: exactly half the vertical field of view, upwards.
+  const Vec3 top = camera.ray_through(Vec2(0.5f * width, 0.0f)).direction;
+  CHECK(angle_between(top, forward) == Approx(half_fov).epsilon(1e-5));
+  CHECK(glm::dot(top, up) > 0.0f);
+  CHECK(std::abs(glm::dot(top, right)) < 1e-6f);
+  // Bottom edge: the same angle, downwards.
+  const Vec3 bottom = camera.ray_through(Vec2(0.5f * width, float(height))).direction;
+  CHECK(angle_between(bottom, forward) == Approx(half_fov).epsilon(1e-5));
+  CHECK(glm::dot(bottom, up) < 0.0f);
+  // Right edge, middle: horizontal half-angle atan(aspect tan(fov/2)).
+  const Vec3 right_edge = camera.ray_through(Vec2(float(width), 0.5f * height)).direction;
+  CHECK(angle_between(right_edge, forward) ==
+        Approx(std::atan(aspect * std::tan(half_fov))).epsilon(1e-5));
+  CHECK(glm::dot(right_edge, right) > 0.0f);
+  // Top-left corner: tan^2 of the angle is (1 + aspect^2) tan^2(fov/2).
+  const Vec3 corner = camera.ray_through(Vec2(0.0f, 0.0f)).direction;
+  CHECK(angle_between(corner, forward) ==
+        Approx(std::atan(std::tan(half_fov) * std::sqrt(1.0 + aspect * aspect))).epsilon(1e-5));
+  CHECK(glm::dot(corner, right) < 0.0f);
+  CHECK(glm::dot(corner, up) > 0.0f);
+  CHECK(std::abs(glm::length(corner) - 1.0f) < 1e-6f);
+  // Film coordinates are linear on the image plane: the quarter point is halfway in tangent.
+  const Vec3 quarter = camera.ray_through(Vec2(0.5f * width, 0.25f * height)).direction;
+  CHECK(std::tan(angle_between(quarter, forward)) ==
+        Approx(0.5 * std::tan(half_fov)).epsilon(1e-5));
+}
+
+TEST_CASE("camera: the near plane is perpendicular to the view direction", "[camera]") {
+  glint::CameraDescription description = oblique_camera();
+  description.near = 2.5f;
+  const int width = 64, height = 48;
+  const glint::Camera camera(description, width, height);
+  const Vec3 forward = glm::normalize(description.look_at - description.position);
+  const double half_fov = 0.5 * description.fov_degrees * kDegree;
+  const double aspect = double(width) / height;
+
+  const glint::Ray centre = camera.ray_through(Vec2(32.0f, 24.0f));
+  CHECK(centre.t_min == Approx(2.5).epsilon(1e-6));
+  // Corner ray: t_min = near / cos(angle to the view direction).
+  const glint::Ray corner = camera.ray_through(Vec2(0.0f, 0.0f));
+  const double corner_angle = std::atan(std::tan(half_fov) * std::sqrt(1.0 + aspect * aspect));
+  CHECK(corner.t_min == Approx(2.5 / std::cos(corner_angle)).epsilon(1e-5));
+  // Every ray starts its visible part on the plane.
+  for (const Vec2 film : {Vec2(0.0f), Vec2(64.0f, 0.0f), Vec2(10.5f, 40.25f), Vec2(64.0f, 48.0f)}) {
+    const glint::Ray ray = camera.ray_through(film);
+    CHECK(glm::dot(ray.at(ray.t_min) - description.position, forward) == Approx(2.5).epsilon(1e-5));
+  }
+}
+
+TEST_CASE("validate rejects degenerate cameras", "[camera][validate]") {
+  glint::SceneDescription scene;
+  scene.source = "cam.scene";
+  scene.camera.line = 7;
+  REQUIRE_NOTHROW(glint::validate(scene));
+
+  const auto expect_rejected = [](glint::SceneDescription bad, const char* what) {
+    INFO(what);
+    try {
+      glint::validate(bad);
+      FAIL("accepted: " << what);
+    } catch (const glint::SceneError& e) {
+      CHECK(e.line() == 7);
+      CHECK(std::string(e.what()).rfind("cam.scene:7: error: ", 0) == 0);
+    }
+  };
+  auto s = scene;
+  s.camera.look_at = s.camera.position;
+  expect_rejected(s, "look_at at the camera position");
+  s = scene;
+  s.camera.up = Vec3(0.0f);
+  expect_rejected(s, "zero up vector");
+  s = scene;
+  s.camera.up = s.camera.look_at - s.camera.position;
+  expect_rejected(s, "up along the view direction");
+  s.camera.up = -s.camera.up;
+  expect_rejected(s, "up against the view direction");
+  for (const float fov : {0.0f, -10.0f, 180.0f, 200.0f, std::nanf("")}) {
+    s = scene;
+    s.camera.fov_degrees = fov;
+    expect_rejected(s, "fov out of (0, 180)");
+  }
+  for (const float near : {-1.0f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
+    s = scene;
+    s.camera.near = near;
+    expect_rejected(s, "bad near");
+  }
+  s = scene;
+  s.camera.position.x = std::numeric_limits<float>::infinity();
+  expect_rejected(s, "infinite position");
+  s = scene;
+  s.camera.look_at.y = std::nanf("");
+  expect_rejected(s, "NaN look_at");
+
+  // Valid edge cases are accepted.
+  s = scene;
+  s.camera.fov_degrees = 179.0f;
+  s.camera.near = 0.0f;
+  s.camera.up = {0.3f, 1.0f, 0.2f};  // need not be perpendicular
+  CHECK_NOTHROW(glint::validate(s));
+}
