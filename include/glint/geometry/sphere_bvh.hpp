@@ -1,9 +1,11 @@
 #pragma once
 // A bounding volume hierarchy over spheres, for scenes too large for a linear SIMD scan.
-// Built top-down with a binned surface-area heuristic; nodes are 32 bytes, depth-first, the
-// left child right after its parent; leaf spheres are stored contiguously in traversal order
-// so a leaf is one short linear scan. Traversal visits the nearer child first and skips any
-// subtree whose box starts beyond the closest hit found so far.
+// Built top-down as a binary tree with a binned surface-area heuristic (32-byte nodes, the
+// left child right after its parent), then collapsed into a 4-wide tree whose nodes hold their
+// children's boxes in structure-of-arrays form, so one SSE pass tests all four. Leaf spheres
+// are stored contiguously, so a leaf is one short linear scan. Traversal tests leaves nearest
+// first, visits inner children nearest first, and skips any subtree whose box starts beyond
+// the closest hit found so far.
 
 #include <algorithm>
 #include <array>
@@ -14,6 +16,10 @@
 #include <vector>
 
 #include <glm/vector_relational.hpp>
+
+#if defined(__SSE4_1__)
+#include <smmintrin.h>
+#endif
 
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_sphere.hpp"
@@ -34,6 +40,7 @@ class SphereBvh {
 
   std::size_t size() const { return spheres_.size(); }
   std::size_t node_count() const { return nodes_.size(); }
+  std::size_t wide_node_count() const { return wide_.size(); }
   bool empty() const { return spheres_.empty(); }
 
   /// Nearest hit with t in (ray.t_min, min(ray.t_max, hit.t)), skipping the ray's origin
@@ -100,6 +107,15 @@ class SphereBvh {
     }
   };
 
+  /// Four children: inner (count 0; child = wide node index), leaf (count > 0; child = first
+  /// sphere) or empty (child = kEmptySlot).
+  struct alignas(16) WideNode {
+    float lower_x[4], lower_y[4], lower_z[4];
+    float upper_x[4], upper_y[4], upper_z[4];
+    std::uint32_t child[4];
+    std::uint32_t count[4];
+  };
+
   struct LeafSphere {
     Vec3 center;
     float radius;
@@ -107,6 +123,7 @@ class SphereBvh {
   };
 
   static constexpr std::uint32_t kMaxLeafSize = 4;
+  static constexpr std::uint32_t kEmptySlot = 0xffffffffu;
   static constexpr int kBins = 16;
   static constexpr int kStackSize = 64;
 
@@ -117,6 +134,69 @@ class SphereBvh {
     nodes_.reserve(2 * spheres.size() / 2 + 1);
     spheres_.reserve(spheres.size());
     build_node(spheres, 0, spheres.size(), 0);
+    wide_.clear();
+    wide_.reserve(nodes_.size() / 2 + 1);
+    collapse(0);
+  }
+
+  /// Turns the binary subtree at `binary` into a wide node: its children are the binary
+  /// node's, repeatedly replacing the largest inner child by its two children until there
+  /// are four (pulling up the largest boxes first keeps the tree's surface area low).
+  std::uint32_t collapse(std::uint32_t binary) {
+    std::array<std::uint32_t, 4> children{};
+    int count = 0;
+    if (nodes_[binary].count > 0) {
+      children[count++] = binary;  // a tree that is a single leaf
+    } else {
+      children[count++] = binary + 1;
+      children[count++] = nodes_[binary].offset;
+      while (count < 4) {
+        int widest = -1;
+        float widest_area = -1.0f;
+        for (int c = 0; c < count; ++c) {
+          const Node& n = nodes_[children[std::size_t(c)]];
+          const float area = Box{n.lower, n.upper}.half_area();
+          if (n.count == 0 && area > widest_area) {
+            widest = c;
+            widest_area = area;
+          }
+        }
+        if (widest < 0) break;
+        const std::uint32_t expanded = children[std::size_t(widest)];
+        children[std::size_t(widest)] = expanded + 1;
+        children[std::size_t(count++)] = nodes_[expanded].offset;
+      }
+    }
+    const auto index = static_cast<std::uint32_t>(wide_.size());
+    wide_.emplace_back();
+    for (int c = 0; c < 4; ++c) {
+      WideNode& w = wide_[index];
+      if (c >= count) {
+        w.lower_x[c] = w.lower_y[c] = w.lower_z[c] = std::numeric_limits<float>::max();
+        w.upper_x[c] = w.upper_y[c] = w.upper_z[c] = -std::numeric_limits<float>::max();
+        w.child[c] = kEmptySlot;
+        w.count[c] = 0;
+        continue;
+      }
+      const Node& n = nodes_[children[std::size_t(c)]];
+      w.lower_x[c] = n.lower.x;
+      w.lower_y[c] = n.lower.y;
+      w.lower_z[c] = n.lower.z;
+      w.upper_x[c] = n.upper.x;
+      w.upper_y[c] = n.upper.y;
+      w.upper_z[c] = n.upper.z;
+      w.count[c] = n.count;
+      w.child[c] = n.count > 0 ? n.offset : 0;
+    }
+    // Recurse after filling the slots: emplace_back may move wide_.
+    for (int c = 0; c < count; ++c) {
+      const Node& n = nodes_[children[std::size_t(c)]];
+      if (n.count == 0) {
+        const std::uint32_t child = collapse(children[std::size_t(c)]);
+        wide_[index].child[c] = child;
+      }
+    }
+    return index;
   }
 
   static Box bounds_of(const Input& s) {
@@ -214,21 +294,45 @@ class SphereBvh {
     return index;
   }
 
-  /// Entry distance of the ray into a node's box, or +infinity if it misses within [t_min, t_max].
-  [[gnu::always_inline]] static float enter_box(const Node& node, const Vec3& origin,
-                                                const Vec3& inverse_direction, float t_min,
-                                                float t_max) {
-    const Vec3 t0 = (node.lower - origin) * inverse_direction;
-    const Vec3 t1 = (node.upper - origin) * inverse_direction;
-    const Vec3 near = glm::min(t0, t1), far = glm::max(t0, t1);
-    const float enter = max_of(max_of(near.x, near.y), max_of(near.z, t_min));
-    const float leave = min_of(min_of(far.x, far.y), min_of(far.z, t_max));
-    return enter <= leave ? enter : kInfinity;
+  /// Entry distances into a wide node's four boxes; +infinity where the ray misses the box
+  /// within [t_min, t_max].
+  static void enter_boxes(const WideNode& node, const Vec3& origin, const Vec3& inverse_direction,
+                          float t_min, float t_max, float (&enter)[4]) {
+#if defined(__SSE4_1__)
+    const __m128 ox = _mm_set1_ps(origin.x), oy = _mm_set1_ps(origin.y), oz = _mm_set1_ps(origin.z);
+    const __m128 ix = _mm_set1_ps(inverse_direction.x), iy = _mm_set1_ps(inverse_direction.y),
+                 iz = _mm_set1_ps(inverse_direction.z);
+    const __m128 ax = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_x), ox), ix);
+    const __m128 bx = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_x), ox), ix);
+    const __m128 ay = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_y), oy), iy);
+    const __m128 by = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_y), oy), iy);
+    const __m128 az = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_z), oz), iz);
+    const __m128 bz = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_z), oz), iz);
+    const __m128 near = _mm_max_ps(_mm_max_ps(_mm_min_ps(ax, bx), _mm_min_ps(ay, by)),
+                                   _mm_max_ps(_mm_min_ps(az, bz), _mm_set1_ps(t_min)));
+    const __m128 far = _mm_min_ps(_mm_min_ps(_mm_max_ps(ax, bx), _mm_max_ps(ay, by)),
+                                  _mm_min_ps(_mm_max_ps(az, bz), _mm_set1_ps(t_max)));
+    _mm_storeu_ps(enter, _mm_blendv_ps(_mm_set1_ps(kInfinity), near, _mm_cmple_ps(near, far)));
+#else
+    for (int c = 0; c < 4; ++c) {
+      const float ax = (node.lower_x[c] - origin.x) * inverse_direction.x;
+      const float bx = (node.upper_x[c] - origin.x) * inverse_direction.x;
+      const float ay = (node.lower_y[c] - origin.y) * inverse_direction.y;
+      const float by = (node.upper_y[c] - origin.y) * inverse_direction.y;
+      const float az = (node.lower_z[c] - origin.z) * inverse_direction.z;
+      const float bz = (node.upper_z[c] - origin.z) * inverse_direction.z;
+      const float near =
+          max_of(max_of(min_of(ax, bx), min_of(ay, by)), max_of(min_of(az, bz), t_min));
+      const float far =
+          min_of(min_of(max_of(ax, bx), max_of(ay, by)), min_of(max_of(az, bz), t_max));
+      enter[c] = near <= far ? near : kInfinity;
+    }
+#endif
   }
 
   template <bool kAnyHit>
   bool traverse(const Ray& ray, SphereHit& hit) const {
-    if (nodes_.empty()) return false;
+    if (wide_.empty()) return false;
     const Vec3 inverse_direction = 1.0f / ray.direction;
     float best = min_of(ray.t_max, hit.t);
     std::uint32_t best_id = kNoSphere;
@@ -236,15 +340,35 @@ class SphereBvh {
       std::uint32_t node;
       float enter;
     };
-    std::array<Pending, kStackSize> stack;
+    // Each level pushes at most three siblings; the binary tree's depth is capped, so this
+    // bounds the stack.
+    std::array<Pending, 3 * kStackSize> stack;
     int top = 0;
-    std::uint32_t current = 0;
-    if (enter_box(nodes_[0], ray.origin, inverse_direction, ray.t_min, best) == kInfinity)
-      return false;
-    for (;;) {
-      const Node& node = nodes_[current];
-      if (node.count > 0) {
-        for (std::uint32_t i = node.offset; i < node.offset + node.count; ++i) {
+    stack[std::size_t(top++)] = Pending{0, ray.t_min};
+    while (top > 0) {
+      const Pending pending = stack[std::size_t(--top)];
+      if (pending.enter > best) continue;
+      const WideNode& node = wide_[pending.node];
+      float enter[4];
+      enter_boxes(node, ray.origin, inverse_direction, ray.t_min, best, enter);
+      // Children nearest first (insertion sort of at most four).
+      int order[4];
+      int hits = 0;
+      for (int c = 0; c < 4; ++c) {
+        if (enter[c] == kInfinity || node.child[c] == kEmptySlot) continue;
+        int k = hits++;
+        while (k > 0 && enter[order[k - 1]] > enter[c]) {
+          order[k] = order[k - 1];
+          --k;
+        }
+        order[k] = c;
+      }
+      // Leaves now, nearest first, so that their hits prune the inner children; inner
+      // children pushed farthest first, so the nearest is popped next.
+      for (int k = 0; k < hits; ++k) {
+        const int c = order[k];
+        if (node.count[c] == 0 || enter[c] > best) continue;
+        for (std::uint32_t i = node.child[c]; i < node.child[c] + node.count[c]; ++i) {
           const LeafSphere& s = spheres_[i];
           if (s.id == ray.origin_sphere) continue;
           SphereRoots roots;
@@ -260,31 +384,12 @@ class SphereBvh {
             }
           }
         }
-      } else {
-        const std::uint32_t left = current + 1, right = node.offset;
-        const float t_left =
-            enter_box(nodes_[left], ray.origin, inverse_direction, ray.t_min, best);
-        const float t_right =
-            enter_box(nodes_[right], ray.origin, inverse_direction, ray.t_min, best);
-        if (t_left != kInfinity || t_right != kInfinity) {
-          if (t_left == kInfinity) {
-            current = right;
-          } else if (t_right == kInfinity) {
-            current = left;
-          } else {
-            const bool left_first = t_left <= t_right;
-            current = left_first ? left : right;
-            stack[std::size_t(top++)] =
-                left_first ? Pending{right, t_right} : Pending{left, t_left};
-          }
-          continue;
-        }
       }
-      // Pop the next subtree that can still hold something nearer than the best hit.
-      while (top > 0 && stack[std::size_t(top - 1)].enter > best)
-        --top;
-      if (top == 0) break;
-      current = stack[std::size_t(--top)].node;
+      for (int k = hits - 1; k >= 0; --k) {
+        const int c = order[k];
+        if (node.count[c] == 0 && enter[c] <= best)
+          stack[std::size_t(top++)] = Pending{node.child[c], enter[c]};
+      }
     }
     if (best_id == kNoSphere) return false;
     hit.t = best;
@@ -292,7 +397,8 @@ class SphereBvh {
     return true;
   }
 
-  std::vector<Node> nodes_;
+  std::vector<Node> nodes_;     // binary tree: building and box queries
+  std::vector<WideNode> wide_;  // 4-wide tree: ray traversal
   std::vector<LeafSphere> spheres_;
 };
 
