@@ -68,8 +68,8 @@ Int parse_integer(std::string_view option, std::string_view text, Int low, Int h
   Int value{};
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size() || value < low || value > high)
-    throw UsageError{std::string(option) + " expects an integer in [" + std::to_string(low) +
-                     ", " + std::to_string(high) + "], got '" + std::string(text) + "'"};
+    throw UsageError{std::string(option) + " expects an integer in [" + std::to_string(low) + ", " +
+                     std::to_string(high) + "], got '" + std::string(text) + "'"};
   return value;
 }
 
@@ -188,14 +188,14 @@ int main(int argc, char** argv) {
     if (options.threads) settings.threads = *options.threads;
     settings.seed = options.seed;
 
-    const std::string output =
-        options.output ? *options.output
-                       : std::filesystem::path(options.scene).stem().string() + ".png";
+    const std::string output = options.output
+                                   ? *options.output
+                                   : std::filesystem::path(options.scene).stem().string() + ".png";
     check_writable_directory(output);
     if (options.hdr) check_writable_directory(*options.hdr);
 
-    const glint::RenderResult result = glint::Renderer<Variant>::render(
-        scene, settings, ProgressPrinter(!options.quiet));
+    const glint::RenderResult result =
+        glint::Renderer<Variant>::render(scene, settings, ProgressPrinter(!options.quiet));
     glint::write_png(result.film, output);
     if (options.hdr) glint::write_pfm(result.film, *options.hdr);
 

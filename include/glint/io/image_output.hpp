@@ -100,7 +100,8 @@ inline void write_pfm(const Film& film, const std::filesystem::path& path) {
       for (const float v : {c.x, c.y, c.z}) {
         std::uint32_t bits;
         std::memcpy(&bits, &v, sizeof bits);
-        for (int byte = 0; byte < 4; ++byte) bytes.push_back(static_cast<char>(bits >> (8 * byte)));
+        for (int byte = 0; byte < 4; ++byte)
+          bytes.push_back(static_cast<char>(bits >> (8 * byte)));
       }
     }
   }
@@ -127,11 +128,11 @@ inline Film read_pfm(const std::filesystem::path& path) {
         unsigned char b[4];
         if (!in.read(reinterpret_cast<char*>(b), 4))
           throw ImageWriteError(path.string() + ": truncated PFM file");
-        const std::uint32_t bits =
-            little_endian ? (std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 |
-                             std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24)
-                          : (std::uint32_t(b[3]) | std::uint32_t(b[2]) << 8 |
-                             std::uint32_t(b[1]) << 16 | std::uint32_t(b[0]) << 24);
+        const std::uint32_t bits = little_endian
+                                       ? (std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 |
+                                          std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24)
+                                       : (std::uint32_t(b[3]) | std::uint32_t(b[2]) << 8 |
+                                          std::uint32_t(b[1]) << 16 | std::uint32_t(b[0]) << 24);
         std::memcpy(&v, &bits, sizeof v);
       }
       film.at(x, y) = Color(rgb[0], rgb[1], rgb[2]);

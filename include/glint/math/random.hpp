@@ -20,8 +20,8 @@ constexpr std::uint64_t mix_bits(std::uint64_t v) {
 template <typename... Ts>
 constexpr std::uint64_t hash_values(Ts... values) {
   std::uint64_t h = 0x9e3779b97f4a7c15ULL;
-  ((h = mix_bits(h ^ (static_cast<std::uint64_t>(values) + 0x9e3779b97f4a7c15ULL + (h << 6) +
-                      (h >> 2)))),
+  ((h = mix_bits(
+        h ^ (static_cast<std::uint64_t>(values) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2)))),
    ...);
   return h;
 }

@@ -20,8 +20,8 @@ struct Frame {
     const float sign = std::copysign(1.0f, n.z);
     const float a = -1.0f / (sign + n.z);
     const float b = n.x * n.y * a;
-    return {Vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x), Vec3(b, sign + n.y * n.y * a, -n.y),
-            n};
+    return {Vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x),
+            Vec3(b, sign + n.y * n.y * a, -n.y), n};
   }
   Vec3 to_world(const Vec3& local) const {
     return local.x * tangent + local.y * bitangent + local.z * normal;

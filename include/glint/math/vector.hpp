@@ -20,9 +20,15 @@ inline constexpr float kInvPi = 0.31830988618379067154f;
 /// Minimum and maximum that compile to single instructions (std::fmin/fmax must handle NaN
 /// specially and end up as library calls in hot loops). If either argument is NaN the
 /// result is the second argument.
-inline float min_of(float a, float b) { return a < b ? a : b; }
-inline float max_of(float a, float b) { return a > b ? a : b; }
+inline float min_of(float a, float b) {
+  return a < b ? a : b;
+}
+inline float max_of(float a, float b) {
+  return a > b ? a : b;
+}
 
-inline float max_component(const Vec3& v) { return max_of(v.x, max_of(v.y, v.z)); }
+inline float max_component(const Vec3& v) {
+  return max_of(v.x, max_of(v.y, v.z));
+}
 
 }  // namespace glint

@@ -34,7 +34,7 @@ struct BuiltinShading {
   /// Eight squares around the equator and four from pole to pole, alternating between the
   /// colour and its complement.
   static Color checker_color(Color base, Vec3 direction) {
-    const float longitude = std::atan2(direction.z, direction.x) + kPi;  // [0, 2pi]
+    const float longitude = std::atan2(direction.z, direction.x) + kPi;                // [0, 2pi]
     const float latitude = std::acos(std::fmax(-1.0f, std::fmin(1.0f, direction.y)));  // [0, pi]
     const int u = static_cast<int>(longitude * (4.0f * kInvPi));
     const int v = static_cast<int>(latitude * (4.0f * kInvPi));
@@ -43,10 +43,14 @@ struct BuiltinShading {
 
   static Color color(ShadingKind kind, Color base, Vec3 direction) {
     switch (kind) {
-      case ShadingKind::uniform: return base;
-      case ShadingKind::octants: return octant_color(base, direction);
-      case ShadingKind::checker: return checker_color(base, direction);
-      case ShadingKind::custom: return base;  // not supported: scenes using it are rejected
+      case ShadingKind::uniform:
+        return base;
+      case ShadingKind::octants:
+        return octant_color(base, direction);
+      case ShadingKind::checker:
+        return checker_color(base, direction);
+      case ShadingKind::custom:
+        return base;  // not supported: scenes using it are rejected
     }
     return base;
   }

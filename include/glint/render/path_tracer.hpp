@@ -49,8 +49,8 @@ inline bool refract(const Vec3& direction, const Interface& at, float eta, Vec3&
   const float sin2_transmitted = eta * eta * (1.0f - at.cos_incident * at.cos_incident);
   if (sin2_transmitted >= 1.0f) return false;
   const float cos_transmitted = std::sqrt(1.0f - sin2_transmitted);
-  refracted =
-      glm::normalize(eta * direction + (eta * at.cos_incident - cos_transmitted) * at.facing_normal);
+  refracted = glm::normalize(eta * direction +
+                             (eta * at.cos_incident - cos_transmitted) * at.facing_normal);
   return true;
 }
 
@@ -163,9 +163,9 @@ class PathTracer {
         float weight;
         const Ray next = bounce_ray(surface, at, sampler, weight);
         const float factor = weight * kInvPi * continuation;
-        incoming += factor * trace_tree(next, depth + 1,
-                                        throughput * max_component(albedo) * factor,
-                                        sampler, counters);
+        incoming +=
+            factor * trace_tree(next, depth + 1, throughput * max_component(albedo) * factor,
+                                sampler, counters);
       }
       radiance += albedo * incoming;
     }
@@ -173,16 +173,16 @@ class PathTracer {
       const Ray next = ray_leaving_sphere(surface.point, detail::reflect(ray.direction, at),
                                           hit.sphere, surface.outward_normal);
       const Color weight = (m.mirror * continuation) * m.mirror_color;
-      radiance += weight * trace_tree(next, depth + 1, throughput * max_component(weight),
-                                      sampler, counters);
+      radiance += weight * trace_tree(next, depth + 1, throughput * max_component(weight), sampler,
+                                      counters);
     }
     if (bounce && m.transparent > 0.0f) {
       const SpecularChoice choice = transmission(ray, at, m, sampler);
       const Ray next =
           ray_leaving_sphere(surface.point, choice.direction, hit.sphere, surface.outward_normal);
       const Color weight = (m.transparent * continuation) * m.transparent_color;
-      radiance += weight * trace_tree(next, depth + 1, throughput * max_component(weight),
-                                      sampler, counters);
+      radiance += weight * trace_tree(next, depth + 1, throughput * max_component(weight), sampler,
+                                      counters);
     }
     return radiance;
   }
@@ -227,8 +227,8 @@ class PathTracer {
         throughput *= m.mirror_color * (total * continuation);
       } else {
         const SpecularChoice choice = transmission(ray, at, m, sampler);
-        ray = ray_leaving_sphere(surface.point, choice.direction, hit.sphere,
-                                 surface.outward_normal);
+        ray =
+            ray_leaving_sphere(surface.point, choice.direction, hit.sphere, surface.outward_normal);
         throughput *= m.transparent_color * (total * continuation);
       }
     }

@@ -154,8 +154,8 @@ class Renderer {
 
   /// One pixel's estimate: the mean of its samples. Exposed for tests and benchmarks.
   static Color render_pixel(const PathTracer<C>& tracer, const Camera& camera,
-                            const RenderSettings& settings, int x, int y,
-                            TraceCounters& counters, std::uint64_t& invalid_samples) {
+                            const RenderSettings& settings, int x, int y, TraceCounters& counters,
+                            std::uint64_t& invalid_samples) {
     typename C::sampler sampler;
     Color sum(0.0f);
     for (int s = 0; s < settings.samples_per_pixel; ++s) {

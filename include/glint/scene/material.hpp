@@ -22,10 +22,14 @@ inline constexpr int kShadingKindCount = 4;
 
 constexpr std::string_view to_string(ShadingKind kind) {
   switch (kind) {
-    case ShadingKind::uniform: return "uniform";
-    case ShadingKind::octants: return "octants";
-    case ShadingKind::checker: return "checker";
-    case ShadingKind::custom: return "custom";
+    case ShadingKind::uniform:
+      return "uniform";
+    case ShadingKind::octants:
+      return "octants";
+    case ShadingKind::checker:
+      return "checker";
+    case ShadingKind::custom:
+      return "custom";
   }
   return "?";
 }

@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
   settings.width = settings.height = 32;
   settings.samples_per_pixel = 4;
   const glint::Scene scene = glint::Scene::build(description);
-  const glint::RenderResult result = glint::Renderer<glint::variants::report>::render(scene, settings);
+  const glint::RenderResult result =
+      glint::Renderer<glint::variants::report>::render(scene, settings);
   // Facing the light head on at distance 8: radiance = I / (pi d^2) = 100 / (64 pi).
   const float centre = result.film.at(16, 16).x, corner = result.film.at(0, 0).x;
   const float expected = 100.0f / (64.0f * 3.14159265f);
