@@ -20,6 +20,7 @@ using glint::PixelSample;
 using glint::SobolSampler;
 using glint::StratifiedSampler;
 using glint::Vec2;
+using HybridSobol = glint::HybridSobolSampler<6>;
 
 namespace {
 
@@ -109,7 +110,7 @@ std::uint64_t float_to_fraction(float value) {
 }  // namespace
 
 TEMPLATE_TEST_CASE("samplers return values u with 0 <= u < 1 for any pixel sample", "[sampler]",
-                   IndependentSampler, StratifiedSampler, SobolSampler) {
+                   IndependentSampler, StratifiedSampler, SobolSampler, HybridSobol) {
   static_assert(glint::Sampler<TestType>);
   TestType sampler;
   const std::uint32_t counts[] = {0, 1, 2, 3, 7, 16, 1000, 1u << 20, 0xffffffffu};
@@ -131,7 +132,8 @@ TEMPLATE_TEST_CASE("samplers return values u with 0 <= u < 1 for any pixel sampl
 // this is what makes each sample (not only a pixel's average) unbiased, and it catches a
 // permutation or scramble that favours some strata.
 TEMPLATE_TEST_CASE("1D values are uniform for every sample index and dimension",
-                   "[sampler][statistical]", IndependentSampler, StratifiedSampler, SobolSampler) {
+                   "[sampler][statistical]", IndependentSampler, StratifiedSampler, SobolSampler,
+                   HybridSobol) {
   constexpr int kPixels = 20000;
   constexpr int kBins = 50;
   TestType sampler;
@@ -152,7 +154,8 @@ TEMPLATE_TEST_CASE("1D values are uniform for every sample index and dimension",
 }
 
 TEMPLATE_TEST_CASE("2D values are uniform for every sample index and dimension",
-                   "[sampler][statistical]", IndependentSampler, StratifiedSampler, SobolSampler) {
+                   "[sampler][statistical]", IndependentSampler, StratifiedSampler, SobolSampler,
+                   HybridSobol) {
   constexpr int kPixels = 25600;
   constexpr int kSide = 16;
   TestType sampler;
@@ -305,7 +308,7 @@ TEST_CASE("sobol sampler: a pixel's 2^m samples form a (0,m,2)-net in every requ
 }
 
 TEMPLATE_TEST_CASE("samplers are deterministic per (pixel, sample) and differ between them",
-                   "[sampler]", IndependentSampler, StratifiedSampler, SobolSampler) {
+                   "[sampler]", IndependentSampler, StratifiedSampler, SobolSampler, HybridSobol) {
   constexpr int kDimensions = 24;
   const PixelSample base{17, 23, 5, 16, 99};
   TestType fresh;
@@ -352,7 +355,7 @@ TEMPLATE_TEST_CASE("samplers are deterministic per (pixel, sample) and differ be
 // sampler that forgot to permute its strata per dimension puts sample i in stratum i of every
 // dimension, r = 1 in every pixel.
 TEMPLATE_TEST_CASE("dimensions are uncorrelated", "[sampler][statistical]", IndependentSampler,
-                   StratifiedSampler, SobolSampler) {
+                   StratifiedSampler, SobolSampler, HybridSobol) {
   constexpr int kDimensions = 9;  // 3 one-dimensional and 6 two-dimensional requests: 15 values
   constexpr std::uint32_t kPixels = 2000;
   TestType sampler;
@@ -507,5 +510,23 @@ TEST_CASE("permute_index is a permutation and each element is uniform over keys"
       INFO("n = " << n << ", element " << element);
       CHECK(chi_square(counts, 2000.0) < chi_square_critical(int(n) - 1));
     }
+  }
+}
+
+TEST_CASE("hybrid Sobol sampler: Sobol' values first, independent ones after", "[sampler]") {
+  for (std::uint32_t pixel = 0; pixel < 64; ++pixel) {
+    const PixelSample s = pixel_sample(pixel, pixel % 16, 16);
+    SobolSampler sobol;
+    HybridSobol hybrid;
+    const std::vector<float> pure = draw(sobol, s, 12);
+    const std::vector<float> mixed = draw(hybrid, s, 12);
+    REQUIRE(pure.size() == mixed.size());
+    // Requests 0..5 (two 1D and four 2D: 10 values) are the Sobol' sampler's exactly.
+    for (std::size_t k = 0; k < 10; ++k)
+      CHECK(mixed[k] == pure[k]);
+    int equal_after = 0;
+    for (std::size_t k = 10; k < pure.size(); ++k)
+      equal_after += mixed[k] == pure[k];
+    CHECK(equal_after <= 1);
   }
 }
