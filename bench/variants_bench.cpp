@@ -1,0 +1,184 @@
+// Whole-render cost of every named variant (glint::variants::all) on the small scenes of
+// bench/scenes: one benchmark per (scene, variant), each iteration one 64x64 frame at 4 spp,
+// depth 12, on one worker thread. Compare a variant with `report` on the same scene; the
+// quality side of the trade (error at equal time and at equal samples) is bench/run-all's.
+//
+//   glint-variants-bench [--scenes=DIR] --benchmark_out=variants.json --benchmark_out_format=json
+//
+// Times are the process's CPU time, not wall time: on a shared machine the wall time of a render
+// counts the time other programs held the core (we saw wall times 3x the CPU time under load),
+// while CPU time counts only our work (cache and SMT contention still add noise). Both are in
+// the JSON output (cpu_time, real_time). Counters, per CPU second: seconds_per_sample and Mrays
+// (millions of camera, bounce and shadow rays per second); per frame: samples and rays. One
+// worker thread, because a single thread is disturbed less than several on a shared machine.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <deque>
+#include <exception>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "glint/glint.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace variants = glint::variants;
+
+// variants.hpp gives types, not names. A variant missing here still runs, named by its index
+// in variants::all, so that adding a variant never breaks this benchmark's build.
+template <typename V>
+constexpr std::string_view kVariantName{};
+template <>
+constexpr std::string_view kVariantName<variants::report> = "report";
+template <>
+constexpr std::string_view kVariantName<variants::no_fresnel> = "no_fresnel";
+template <>
+constexpr std::string_view kVariantName<variants::schlick_fresnel> = "schlick_fresnel";
+template <>
+constexpr std::string_view kVariantName<variants::no_antialiasing> = "no_antialiasing";
+template <>
+constexpr std::string_view kVariantName<variants::box_antialiasing> = "box_antialiasing";
+template <>
+constexpr std::string_view kVariantName<variants::tent_antialiasing> = "tent_antialiasing";
+template <>
+constexpr std::string_view kVariantName<variants::cosine_hemisphere> = "cosine_hemisphere";
+template <>
+constexpr std::string_view kVariantName<variants::stochastic_material> = "stochastic_material";
+template <>
+constexpr std::string_view kVariantName<variants::russian_roulette> = "russian_roulette";
+template <>
+constexpr std::string_view kVariantName<variants::uniform_shading> = "uniform_shading";
+template <>
+constexpr std::string_view kVariantName<variants::stratified_sampler> = "stratified_sampler";
+template <>
+constexpr std::string_view kVariantName<variants::sobol_sampler> = "sobol_sampler";
+template <>
+constexpr std::string_view kVariantName<variants::fast> = "fast";
+
+// Small enough that the whole study runs in seconds per benchmark, large enough (16 tiles,
+// 16k samples) that thread start-up and film allocation are noise.
+glint::RenderSettings frame_settings() {
+  glint::RenderSettings settings;
+  settings.width = 64;
+  settings.height = 64;
+  settings.samples_per_pixel = 4;
+  settings.max_depth = 12;
+  settings.threads = 1;
+  settings.seed = 0;
+  return settings;
+}
+
+struct NamedScene {
+  std::string name;
+  glint::Scene scene;
+};
+
+template <typename V>
+void render_frames(benchmark::State& state, const glint::Scene& scene) {
+  const glint::RenderSettings settings = frame_settings();
+  glint::RenderStats stats;
+  for (auto _ : state) {
+    glint::RenderResult result = glint::Renderer<V>::render(scene, settings);
+    benchmark::DoNotOptimize(result.film.pixels().data());
+    stats = result.stats;
+  }
+  // Every frame uses the same seed, so every iteration traces the same rays.
+  const double frames = double(state.iterations());
+  state.counters["seconds_per_sample"] = benchmark::Counter(
+      double(stats.samples) * frames, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  // Named so that the console reads "Mrays=12.3/s".
+  state.counters["Mrays"] =
+      benchmark::Counter(double(stats.rays) * 1e-6 * frames, benchmark::Counter::kIsRate);
+  state.counters["samples_per_frame"] = double(stats.samples);
+  state.counters["rays_per_frame"] = double(stats.rays);
+}
+
+template <typename V>
+void register_variant(std::size_t index, const std::deque<NamedScene>& scenes) {
+  std::string name(kVariantName<V>);
+  if (name.empty()) name = "variant" + std::to_string(index);
+  for (const NamedScene& s : scenes) {
+    // A variant that cannot render a scene (uniform_shading on octants) is left out, not
+    // failed: the other variants' numbers for that scene are still worth having.
+    try {
+      glint::check_supported<V>(s.scene);
+    } catch (const std::exception& error) {
+      std::fprintf(stderr, "glint-variants-bench: skipping %s on %s: %s\n", name.c_str(),
+                   s.name.c_str(), error.what());
+      continue;
+    }
+    const glint::Scene* scene = &s.scene;
+    benchmark::RegisterBenchmark(
+        ("render/" + s.name + "/" + name).c_str(),
+        [scene](benchmark::State& state) { render_frames<V>(state, *scene); })
+        // The renderer's worker thread does the work while this thread waits: the default
+        // (this thread's CPU time) would count nothing.
+        ->MeasureProcessCPUTime()
+        ->Unit(benchmark::kMillisecond);
+  }
+}
+
+template <typename... V>
+void register_all(const std::deque<NamedScene>& scenes, std::tuple<V...>*) {
+  std::size_t index = 0;
+  (register_variant<V>(index++, scenes), ...);
+}
+
+fs::path default_scene_directory() {
+  return fs::path(__FILE__).parent_path() / "scenes";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  fs::path scene_directory = default_scene_directory();
+  // Our own flag is taken out before Google Benchmark sees (and rejects) it.
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg.starts_with("--scenes="))
+      scene_directory = arg.substr(std::string_view("--scenes=").size());
+    else
+      args.push_back(argv[i]);
+  }
+  int benchmark_argc = static_cast<int>(args.size());
+  benchmark::Initialize(&benchmark_argc, args.data());
+  if (benchmark::ReportUnrecognizedArguments(benchmark_argc, args.data())) return 2;
+
+  std::vector<fs::path> files;
+  std::error_code error;
+  for (const fs::directory_entry& entry : fs::directory_iterator(scene_directory, error))
+    if (entry.path().extension() == ".scene") files.push_back(entry.path());
+  if (error || files.empty()) {
+    std::fprintf(stderr, "glint-variants-bench: no .scene files in %s (use --scenes=DIR)\n",
+                 scene_directory.string().c_str());
+    return 1;
+  }
+  std::sort(files.begin(), files.end());
+
+  // A deque, because the registered benchmarks keep pointers to its scenes.
+  std::deque<NamedScene> scenes;
+  try {
+    for (const fs::path& file : files)
+      scenes.push_back({file.stem().string(), glint::Scene::build(glint::read_scene_file(file))});
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 1;
+  }
+
+  register_all(scenes, static_cast<variants::all*>(nullptr));
+  benchmark::AddCustomContext("frame", "64x64, 4 spp, depth 12, 1 worker thread, seed 0");
+  benchmark::AddCustomContext("scenes", scene_directory.string());
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
