@@ -14,6 +14,7 @@
 
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_sphere.hpp"
+#include "glint/generate/random_scene.hpp"
 #include "glint/geometry/sphere_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/policy/antialiasing.hpp"
@@ -22,6 +23,7 @@
 #include "glint/policy/sampler.hpp"
 #include "glint/policy/shading.hpp"
 #include "glint/scene/inclusion_tree.hpp"
+#include "glint/scene/scene.hpp"
 #include "glint/scene/scene_description.hpp"
 
 namespace {
@@ -153,6 +155,7 @@ BENCHMARK(BM_SphereSetAvx2)->Arg(8)->Arg(32)->Arg(256);
 using Independent = glint::IndependentSampler;
 using Stratified = glint::StratifiedSampler;
 using Sobol = glint::SobolSampler;
+using HybridSobol6 = glint::HybridSobolSampler<6>;
 
 /// What the renderer does for a primary ray: start a pixel sample, draw the antialiasing pair.
 /// Pixels and sample indices advance like a tile's loop over a 16 spp image.
@@ -170,6 +173,7 @@ void BM_SamplerStartNext2d(benchmark::State& state) {
 BENCHMARK_TEMPLATE(BM_SamplerStartNext2d, Independent);
 BENCHMARK_TEMPLATE(BM_SamplerStartNext2d, Stratified);
 BENCHMARK_TEMPLATE(BM_SamplerStartNext2d, Sobol);
+BENCHMARK_TEMPLATE(BM_SamplerStartNext2d, HybridSobol6);
 
 /// One start then eight 2D draws, as along a path of several bounces: items are draws, so
 /// this is the per-draw cost with start() amortised.
@@ -188,6 +192,7 @@ void BM_SamplerPath8x2d(benchmark::State& state) {
 BENCHMARK_TEMPLATE(BM_SamplerPath8x2d, Independent);
 BENCHMARK_TEMPLATE(BM_SamplerPath8x2d, Stratified);
 BENCHMARK_TEMPLATE(BM_SamplerPath8x2d, Sobol);
+BENCHMARK_TEMPLATE(BM_SamplerPath8x2d, HybridSobol6);
 
 // ---------------------------------------------------------------------------------------------
 // Diffuse bounce directions
@@ -338,6 +343,40 @@ BENCHMARK(BM_InclusionTreeBuild)
     ->ArgNames({"spheres", "nested"})
     ->ArgsProduct({{100, 1000, 10000}, {0, 1}})
     ->Unit(benchmark::kMicrosecond);
+
+// ---------------------------------------------------------------------------------------------
+// Whole-scene closest hit: the SIMD set alone (up to 64 spheres) or the BVH (more)
+
+/// A random scene of the generator (walls included) whose cube grows with the sphere count so
+/// that the density, and so the free path of a ray, stays that of 40 spheres of radius 1 to 4
+/// in a cube of side 80; rays start at random points of the cube in random directions.
+void BM_SceneClosestHit(benchmark::State& state) {
+  const auto count = static_cast<int>(state.range(0));
+  glint::RandomSceneParameters parameters;
+  parameters.sphere_count = count;
+  parameters.domain_size = 80.0f * std::cbrt(float(count) / 40.0f);
+  parameters.min_radius = 1.0f;
+  parameters.max_radius = 4.0f;
+  parameters.seed = 7;
+  const glint::Scene scene = glint::Scene::build(glint::generate_random_scene(parameters).scene);
+
+  glint::Pcg32 rng(3, 3);
+  std::vector<glint::Ray> rays(kInputs);
+  const float half = 0.5f * parameters.domain_size;
+  for (glint::Ray& ray : rays) {
+    ray.origin = Vec3(uniform(rng, -half, half), uniform(rng, -half, half),
+                      uniform(rng, -half, half));
+    ray.direction = random_unit_vector(rng);
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    glint::SphereHit hit;
+    benchmark::DoNotOptimize(scene.intersect(rays[i++ & kMask], hit));
+    benchmark::DoNotOptimize(hit);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_SceneClosestHit)->ArgName("spheres")->Arg(40)->Arg(1000)->Arg(100000)->Arg(1000000);
 
 }  // namespace
 
