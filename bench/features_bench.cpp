@@ -12,9 +12,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "glint/generate/random_scene.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_sphere.hpp"
-#include "glint/generate/random_scene.hpp"
 #include "glint/geometry/sphere_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/policy/antialiasing.hpp"
@@ -364,8 +364,8 @@ void BM_SceneClosestHit(benchmark::State& state) {
   std::vector<glint::Ray> rays(kInputs);
   const float half = 0.5f * parameters.domain_size;
   for (glint::Ray& ray : rays) {
-    ray.origin = Vec3(uniform(rng, -half, half), uniform(rng, -half, half),
-                      uniform(rng, -half, half));
+    ray.origin =
+        Vec3(uniform(rng, -half, half), uniform(rng, -half, half), uniform(rng, -half, half));
     ray.direction = random_unit_vector(rng);
   }
   std::size_t i = 0;
