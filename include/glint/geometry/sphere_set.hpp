@@ -118,6 +118,12 @@ class SphereSet {
       const __m256 has_roots = _mm256_cmp_ps(discriminant, zero, _CMP_GE_OQ);
       const __m256 c = _mm256_sub_ps(
           _mm256_fmadd_ps(fx, fx, _mm256_fmadd_ps(fy, fy, _mm256_mul_ps(fz, fz))), r2);
+      // The roots sum to -2b and multiply to c: from outside (c > 0) a sphere behind the
+      // origin (b > 0) has no positive root. Most groups in a room hold only spheres the ray
+      // misses or has behind it, and skip the square root and the division.
+      const __m256 ahead_or_inside =
+          _mm256_or_ps(_mm256_cmp_ps(b, zero, _CMP_LT_OQ), _mm256_cmp_ps(c, zero, _CMP_LE_OQ));
+      if (_mm256_movemask_ps(_mm256_and_ps(has_roots, ahead_or_inside)) == 0) continue;
       const __m256 root = _mm256_sqrt_ps(_mm256_max_ps(discriminant, zero));
       // q = -(b + copysign(root, b))
       const __m256 signed_root = _mm256_or_ps(root, _mm256_and_ps(b, sign_mask));
