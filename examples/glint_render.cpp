@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <charconv>
 #include <cstdio>
 #include <exception>
@@ -32,9 +33,10 @@ constexpr std::string_view kUsage = R"(usage: glint-render SCENE [options]
 Renders SCENE (a glint scene file) with the path tracer and writes an image.
 
 options:
-  -o, --output FILE   8-bit sRGB PNG to write (default: SCENE's name with .png, in the
-                      current directory)
-  --hdr FILE          also write linear radiance as a PFM (portable float map)
+  -o, --output FILE   8-bit sRGB PNG to write, FILE ending in .png (default: SCENE's name
+                      with .png, in the current directory)
+  --hdr FILE          also write linear radiance as a PFM (portable float map), FILE ending
+                      in .pfm
   --spp N             samples per pixel (overrides the scene's image spp)
   --max-depth N       most bounces after the camera ray; 0 = direct light only
   --width W           image width in pixels (overrides the scene)
@@ -73,6 +75,24 @@ Int parse_integer(std::string_view option, std::string_view text, Int low, Int h
   return value;
 }
 
+/// Output formats follow the file name, and only these two exist: a picture written under
+/// another name (a PNG called out.jpg) would mislead every program that opens it.
+std::string image_path(std::string_view option, std::string_view path, std::string_view format,
+                       std::string_view extension) {
+  const auto has_extension = [&] {
+    if (path.size() <= extension.size()) return false;
+    const std::string_view tail = path.substr(path.size() - extension.size());
+    for (std::size_t i = 0; i < tail.size(); ++i)
+      if (std::tolower(static_cast<unsigned char>(tail[i])) != extension[i]) return false;
+    return true;
+  };
+  if (!has_extension())
+    throw UsageError{std::string(option) + " writes " + std::string(format) +
+                     ": the file name must end in " + std::string(extension) + ", got '" +
+                     std::string(path) + "'"};
+  return std::string(path);
+}
+
 Options parse_options(int argc, char** argv) {
   Options options;
   std::vector<std::string_view> args(argv + 1, argv + argc);
@@ -86,9 +106,9 @@ Options parse_options(int argc, char** argv) {
       std::cout << kUsage << "\nvariant: " << kVariantName << "\n";
       std::exit(0);
     } else if (arg == "-o" || arg == "--output") {
-      options.output = std::string(value());
+      options.output = image_path(arg, value(), "an 8-bit sRGB PNG", ".png");
     } else if (arg == "--hdr") {
-      options.hdr = std::string(value());
+      options.hdr = image_path(arg, value(), "a linear float PFM", ".pfm");
     } else if (arg == "--spp") {
       options.spp = parse_integer(arg, value(), 1, glint::kMaxSamplesPerPixel);
     } else if (arg == "--max-depth") {

@@ -44,6 +44,10 @@ glint_cli_test(overlapping-glass STATUS 1
                ARGS ${glint_cli_scenes}/overlapping-glass.scene -o out.png OUTPUT out.png)
 glint_cli_test(missing-output-directory STATUS 1 STDERR "directory .* does not exist"
                ARGS ${glint_cli_scenes}/tiny.scene -o nowhere/out.png)
+glint_cli_test(output-not-png STATUS 2 STDERR "-o writes an 8-bit sRGB PNG: the file name must end in .png, got 'out.jpg'"
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.jpg OUTPUT out.jpg)
+glint_cli_test(hdr-not-pfm STATUS 2 STDERR "--hdr writes a linear float PFM: the file name must end in .pfm"
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.exr OUTPUT out.png)
 glint_cli_test(renders STATUS 0 STDERR "Mrays/s" EXPECT_OUTPUT OUTPUT out.png
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --spp 2)
 glint_cli_test(quiet STATUS 0 STDERR "^$" EXPECT_OUTPUT OUTPUT tiny.png
