@@ -55,10 +55,13 @@ class SphereBvh {
 
   /// Calls visit(id) for every sphere whose bounding box overlaps the box [lower, upper]
   /// (a superset of the spheres that overlap it). For scene building, not for rendering.
+  /// `pending` is scratch space: passing the same vector to every query of a loop saves an
+  /// allocation per query.
   template <typename Visit>
-  void for_each_near_box(const Vec3& lower, const Vec3& upper, Visit&& visit) const {
+  void for_each_near_box(const Vec3& lower, const Vec3& upper, Visit&& visit,
+                         std::vector<std::uint32_t>& pending) const {
     if (nodes_.empty()) return;
-    std::vector<std::uint32_t> pending{0};
+    pending.assign(1, 0);
     while (!pending.empty()) {
       const Node& node = nodes_[pending.back()];
       const std::uint32_t index = pending.back();

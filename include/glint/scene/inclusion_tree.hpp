@@ -63,12 +63,17 @@ inline InclusionTree build_inclusion_tree(const SceneDescription& scene) {
   if (glass.empty()) return tree;
   const SphereBvh hierarchy(std::move(glass));
 
+  std::vector<std::uint32_t> pending;
   for (std::size_t index = 0; index < n; ++index) {
     const auto i = static_cast<std::uint32_t>(index);
     const SphereDescription& inner = spheres[i];
-    const Vec3 reach(inner.radius);
+    // A transparent sphere must meet every glass sphere its box overlaps, to find partial
+    // overlaps. An opaque one only needs its containers (it may cut through glass), and the box
+    // of a container holds its centre: a point query, which keeps each wall of radius 1e5 from
+    // visiting every glass sphere of the scene.
+    const Vec3 reach(inner.material.is_transparent() ? inner.radius : 0.0f);
     std::uint32_t& parent = tree.parent[i];
-    hierarchy.for_each_near_box(inner.center - reach, inner.center + reach, [&](std::uint32_t j) {
+    const auto visit = [&](std::uint32_t j) {
       if (j == i) return;
       const SphereDescription& outer = spheres[j];
       switch (classify_spheres(inner, outer)) {
@@ -93,7 +98,8 @@ inline InclusionTree build_inclusion_tree(const SceneDescription& scene) {
         default:
           return;
       }
-    });
+    };
+    hierarchy.for_each_near_box(inner.center - reach, inner.center + reach, visit, pending);
   }
 
   for (std::size_t i = 0; i < n; ++i)
