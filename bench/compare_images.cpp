@@ -19,7 +19,8 @@
 #include <string>
 #include <string_view>
 
-#include "glint/io/image_output.hpp"
+#include "glint/io/image_reader.hpp"
+#include "glint/io/image_writer.hpp"
 
 namespace {
 

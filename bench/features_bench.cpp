@@ -21,7 +21,7 @@
 #include "glint/policy/diffuse_sampling.hpp"
 #include "glint/policy/fresnel.hpp"
 #include "glint/policy/sampler.hpp"
-#include "glint/policy/shading.hpp"
+#include "glint/policy/sphere_shading.hpp"
 #include "glint/scene/inclusion_tree.hpp"
 #include "glint/scene/scene.hpp"
 #include "glint/scene/scene_description.hpp"
@@ -226,7 +226,7 @@ struct FresnelInputs {
   }
 };
 
-template <glint::FresnelModel F>
+template <glint::Fresnel F>
 void BM_Fresnel(benchmark::State& state) {
   const FresnelInputs in;
   std::size_t i = 0;
@@ -244,7 +244,7 @@ BENCHMARK_TEMPLATE(BM_Fresnel, glint::ExactFresnel);
 // ---------------------------------------------------------------------------------------------
 // Antialiasing jitter
 
-template <glint::AntiAliasing A>
+template <glint::Antialiasing A>
 void BM_AntialiasingOffset(benchmark::State& state) {
   const std::vector<Vec2> u = random_unit_squares();
   std::size_t i = 0;
@@ -370,9 +370,7 @@ void BM_SceneClosestHit(benchmark::State& state) {
   }
   std::size_t i = 0;
   for (auto _ : state) {
-    glint::SphereHit hit;
-    benchmark::DoNotOptimize(scene.intersect(rays[i++ & kMask], hit));
-    benchmark::DoNotOptimize(hit);
+    benchmark::DoNotOptimize(scene.closest_hit(rays[i++ & kMask]));
   }
   state.SetItemsProcessed(state.iterations());
 }

@@ -31,38 +31,6 @@
 namespace {
 
 namespace fs = std::filesystem;
-namespace variants = glint::variants;
-
-// variants.hpp gives types, not names. A variant missing here still runs, named by its index
-// in variants::all, so that adding a variant never breaks this benchmark's build.
-template <typename V>
-constexpr std::string_view kVariantName{};
-template <>
-constexpr std::string_view kVariantName<variants::report> = "report";
-template <>
-constexpr std::string_view kVariantName<variants::no_fresnel> = "no_fresnel";
-template <>
-constexpr std::string_view kVariantName<variants::schlick_fresnel> = "schlick_fresnel";
-template <>
-constexpr std::string_view kVariantName<variants::no_antialiasing> = "no_antialiasing";
-template <>
-constexpr std::string_view kVariantName<variants::box_antialiasing> = "box_antialiasing";
-template <>
-constexpr std::string_view kVariantName<variants::tent_antialiasing> = "tent_antialiasing";
-template <>
-constexpr std::string_view kVariantName<variants::cosine_hemisphere> = "cosine_hemisphere";
-template <>
-constexpr std::string_view kVariantName<variants::stochastic_material> = "stochastic_material";
-template <>
-constexpr std::string_view kVariantName<variants::russian_roulette> = "russian_roulette";
-template <>
-constexpr std::string_view kVariantName<variants::uniform_shading> = "uniform_shading";
-template <>
-constexpr std::string_view kVariantName<variants::stratified_sampler> = "stratified_sampler";
-template <>
-constexpr std::string_view kVariantName<variants::sobol_sampler> = "sobol_sampler";
-template <>
-constexpr std::string_view kVariantName<variants::fast> = "fast";
 
 // Small enough that the whole study runs in seconds per benchmark, large enough (16 tiles,
 // 16k samples) that thread start-up and film allocation are noise.
@@ -102,18 +70,15 @@ void render_frames(benchmark::State& state, const glint::Scene& scene) {
   state.counters["rays_per_frame"] = double(stats.rays);
 }
 
-template <typename V>
-void register_variant(std::size_t index, const std::deque<NamedScene>& scenes) {
-  std::string name(kVariantName<V>);
-  if (name.empty()) name = "variant" + std::to_string(index);
+template <glint::NamedVariant V>
+void register_variant(const std::deque<NamedScene>& scenes) {
+  const std::string name(V::info.name);
   for (const NamedScene& s : scenes) {
     // A variant that cannot render a scene (uniform_shading on octants) is left out, not
     // failed: the other variants' numbers for that scene are still worth having.
-    try {
-      glint::check_supported<V>(s.scene);
-    } catch (const std::exception& error) {
-      std::fprintf(stderr, "glint-variants-bench: skipping %s on %s: %s\n", name.c_str(),
-                   s.name.c_str(), error.what());
+    if (!glint::is_supported<V>(s.scene)) {
+      std::fprintf(stderr, "glint-variants-bench: skipping %s on %s: a shading kind it lacks\n",
+                   name.c_str(), s.name.c_str());
       continue;
     }
     const glint::Scene* scene = &s.scene;
@@ -125,12 +90,6 @@ void register_variant(std::size_t index, const std::deque<NamedScene>& scenes) {
         ->MeasureProcessCPUTime()
         ->Unit(benchmark::kMillisecond);
   }
-}
-
-template <typename... V>
-void register_all(const std::deque<NamedScene>& scenes, std::tuple<V...>*) {
-  std::size_t index = 0;
-  (register_variant<V>(index++, scenes), ...);
 }
 
 fs::path default_scene_directory() {
@@ -175,7 +134,7 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  register_all(scenes, static_cast<variants::all*>(nullptr));
+  glint::variants::for_each([&]<typename V>() { register_variant<V>(scenes); });
   benchmark::AddCustomContext("frame", "64x64, 4 spp, depth 12, 1 worker thread, seed 0");
   benchmark::AddCustomContext("scenes", scene_directory.string());
   benchmark::RunSpecifiedBenchmarks();

@@ -1,6 +1,6 @@
 // glint-render: renders a scene file with one renderer variant, chosen when this file is
-// compiled (GLINT_VARIANT, e.g. -DGLINT_VARIANT=report). One executable per variant keeps each
-// translation unit to a single instantiation of the renderer.
+// compiled (GLINT_VARIANT names a type of glint::variants, e.g. -DGLINT_VARIANT=report). One
+// executable per variant keeps each translation unit to a single instantiation of the renderer.
 
 #include <unistd.h>
 
@@ -18,15 +18,14 @@
 #include "glint/glint.hpp"
 
 #ifndef GLINT_VARIANT
-#define GLINT_VARIANT report
+#define GLINT_VARIANT default_variant
 #endif
-#define GLINT_STRINGIFY_(x) #x
-#define GLINT_STRINGIFY(x) GLINT_STRINGIFY_(x)
 
 namespace {
 
 using Variant = glint::variants::GLINT_VARIANT;
-constexpr std::string_view kVariantName = GLINT_STRINGIFY(GLINT_VARIANT);
+static_assert(glint::NamedVariant<Variant>, "GLINT_VARIANT must name a variant of variants.hpp");
+constexpr std::string_view kVariantName = Variant::info.name;
 
 constexpr std::string_view kUsage = R"(usage: glint-render SCENE [options]
 
@@ -49,7 +48,8 @@ options:
   -h, --help          this help
 
 Progress with an estimated time left goes to stderr while rendering, then one summary line.
-Exit status: 0 on success, 1 for a bad scene or an unwritable output, 2 for bad options.
+Exit status: 0 on success, 1 for a bad scene or an unwritable output, 2 for bad options,
+3 for a valid scene that this variant cannot render (a shading kind it was built without).
 )";
 
 struct Options {
@@ -110,15 +110,15 @@ Options parse_options(int argc, char** argv) {
     } else if (arg == "--hdr") {
       options.hdr = image_path(arg, value(), "a linear float PFM", ".pfm");
     } else if (arg == "--spp") {
-      options.spp = parse_integer(arg, value(), 1, glint::kMaxSamplesPerPixel);
+      options.spp = parse_integer(arg, value(), 1, glint::limits::max_samples_per_pixel);
     } else if (arg == "--max-depth") {
-      options.max_depth = parse_integer(arg, value(), 0, glint::kMaxDepth);
+      options.max_depth = parse_integer(arg, value(), 0, glint::limits::max_depth);
     } else if (arg == "--width") {
-      options.width = parse_integer(arg, value(), 1, glint::kMaxImageSide);
+      options.width = parse_integer(arg, value(), 1, glint::limits::max_image_side);
     } else if (arg == "--height") {
-      options.height = parse_integer(arg, value(), 1, glint::kMaxImageSide);
+      options.height = parse_integer(arg, value(), 1, glint::limits::max_image_side);
     } else if (arg == "--threads") {
-      options.threads = parse_integer(arg, value(), 1, 4096);
+      options.threads = parse_integer(arg, value(), 1, glint::limits::max_threads);
     } else if (arg == "--seed") {
       options.seed = parse_integer<std::uint64_t>(arg, value(), 0, UINT64_MAX);
     } else if (arg == "--quiet" || arg == "-q") {
@@ -196,11 +196,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    glint::SceneDescription description = glint::read_scene_file(options.scene);
-    const glint::Scene scene = glint::Scene::build(description);
+    const glint::Scene scene = glint::Scene::build(glint::read_scene_file(options.scene));
     glint::check_supported<Variant>(scene);
 
-    glint::RenderSettings settings = glint::RenderSettings::from(description);
+    glint::RenderSettings settings = glint::RenderSettings::from(scene);
     if (options.spp) settings.samples_per_pixel = *options.spp;
     if (options.max_depth) settings.max_depth = *options.max_depth;
     if (options.width) settings.width = *options.width;
@@ -233,13 +232,14 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "glint-render: warning: %llu samples were NaN or infinite and dropped\n",
                    static_cast<unsigned long long>(result.stats.invalid_samples));
     return 0;
+  } catch (const glint::UnsupportedSceneError& error) {
+    std::cerr << error.what() << "\n";
+    return 3;
+  } catch (const glint::SceneError& error) {
+    std::cerr << error.what() << "\n";  // already "FILE:LINE: error: PROBLEM"
+    return 1;
   } catch (const std::exception& error) {
-    // SceneError messages already read "FILE:LINE: error: ..."
-    const std::string_view message = error.what();
-    if (message.find(": error: ") != std::string_view::npos)
-      std::cerr << message << "\n";
-    else
-      std::cerr << "glint-render: error: " << message << "\n";
+    std::cerr << "glint-render: error: " << error.what() << "\n";
     return 1;
   }
 }

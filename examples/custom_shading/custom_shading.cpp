@@ -24,7 +24,7 @@ struct StripesShading {
 };
 static_assert(glint::SphereShading<StripesShading>);
 
-using Striped = glint::variants::report::with_shading<StripesShading>;
+using Striped = glint::variants::report::with_sphere_shading<StripesShading>;
 
 int main(int argc, char** argv) {
   if (argc < 3 || argc > 4) {
@@ -32,9 +32,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const glint::SceneDescription description = glint::read_scene_file(argv[1]);
-    const glint::Scene scene = glint::Scene::build(description);
-    glint::RenderSettings settings = glint::RenderSettings::from(description);
+    const glint::Scene scene = glint::Scene::build(glint::read_scene_file(argv[1]));
+    glint::RenderSettings settings = glint::RenderSettings::from(scene);
     if (argc == 4) {
       const std::string_view text = argv[3];
       const auto [end, error] =

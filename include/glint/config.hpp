@@ -1,54 +1,76 @@
 #pragma once
-// A renderer configuration: one policy per feature, all checked against their concepts. A
-// variant is an alias of Config; an ablation swaps one policy with the with_* aliases.
+// A renderer configuration: one policy per rendering feature, each checked against its concept
+// (policy/concepts.hpp). Naming rule: the member alias is the concept's name in snake_case
+// (`Antialiasing` -> `antialiasing`), and `with_<alias><P>` is the same configuration with that
+// one policy replaced, which is how an ablation is written.
+
+#include <type_traits>
 
 #include "glint/policy/antialiasing.hpp"
 #include "glint/policy/concepts.hpp"
 #include "glint/policy/diffuse_sampling.hpp"
 #include "glint/policy/fresnel.hpp"
 #include "glint/policy/material_model.hpp"
+#include "glint/policy/path_termination.hpp"
 #include "glint/policy/sampler.hpp"
-#include "glint/policy/shading.hpp"
-#include "glint/policy/termination.hpp"
+#include "glint/policy/sphere_shading.hpp"
 
 namespace glint {
 
-template <Sampler S, MaterialModel M, FresnelModel F, AntiAliasing A, SphereShading H,
-          DiffuseSampling D = UniformHemisphere, PathTermination T = FixedDepth>
+/// - SamplerPolicy: where sample values come from (independent, stratified, Sobol').
+/// - MaterialModelPolicy: which lobes of the report's material a path follows at a hit (all
+///   of them, a tree of rays; or one chosen at random, a chain).
+/// - FresnelPolicy: reflectance of fully transparent spheres (none, Schlick, exact).
+/// - AntialiasingPolicy: where in the pixel a camera ray goes (centre, Gaussian, box, tent).
+/// - SphereShadingPolicy: which shading kinds (uniform, octants, checker, custom) the build
+///   supports and how each colours a point.
+/// - DiffuseSamplingPolicy: how a diffuse bounce direction is drawn (uniform, cosine).
+/// - PathTerminationPolicy: when a path ends (at the maximum depth, or by Russian roulette).
+template <Sampler SamplerPolicy, MaterialModel MaterialModelPolicy, Fresnel FresnelPolicy,
+          Antialiasing AntialiasingPolicy, SphereShading SphereShadingPolicy,
+          DiffuseSampling DiffuseSamplingPolicy = UniformHemisphere,
+          PathTermination PathTerminationPolicy = FixedDepth>
 struct Config {
-  using sampler = S;
-  using material_model = M;
-  using fresnel = F;
-  using antialiasing = A;
-  using shading = H;
-  using diffuse_sampling = D;
-  using termination = T;
+  using sampler = SamplerPolicy;
+  using material_model = MaterialModelPolicy;
+  using fresnel = FresnelPolicy;
+  using antialiasing = AntialiasingPolicy;
+  using sphere_shading = SphereShadingPolicy;
+  using diffuse_sampling = DiffuseSamplingPolicy;
+  using path_termination = PathTerminationPolicy;
 
-  template <Sampler S2>
-  using with_sampler = Config<S2, M, F, A, H, D, T>;
-  template <MaterialModel M2>
-  using with_material_model = Config<S, M2, F, A, H, D, T>;
-  template <FresnelModel F2>
-  using with_fresnel = Config<S, M, F2, A, H, D, T>;
-  template <AntiAliasing A2>
-  using with_antialiasing = Config<S, M, F, A2, H, D, T>;
-  template <SphereShading H2>
-  using with_shading = Config<S, M, F, A, H2, D, T>;
-  template <DiffuseSampling D2>
-  using with_diffuse_sampling = Config<S, M, F, A, H, D2, T>;
-  template <PathTermination T2>
-  using with_termination = Config<S, M, F, A, H, D, T2>;
+  template <Sampler P>
+  using with_sampler = Config<P, material_model, fresnel, antialiasing, sphere_shading,
+                              diffuse_sampling, path_termination>;
+  template <MaterialModel P>
+  using with_material_model =
+      Config<sampler, P, fresnel, antialiasing, sphere_shading, diffuse_sampling, path_termination>;
+  template <Fresnel P>
+  using with_fresnel = Config<sampler, material_model, P, antialiasing, sphere_shading,
+                              diffuse_sampling, path_termination>;
+  template <Antialiasing P>
+  using with_antialiasing = Config<sampler, material_model, fresnel, P, sphere_shading,
+                                   diffuse_sampling, path_termination>;
+  template <SphereShading P>
+  using with_sphere_shading =
+      Config<sampler, material_model, fresnel, antialiasing, P, diffuse_sampling, path_termination>;
+  template <DiffuseSampling P>
+  using with_diffuse_sampling =
+      Config<sampler, material_model, fresnel, antialiasing, sphere_shading, P, path_termination>;
+  template <PathTermination P>
+  using with_path_termination =
+      Config<sampler, material_model, fresnel, antialiasing, sphere_shading, diffuse_sampling, P>;
 };
 
 namespace detail {
-template <typename T>
-struct is_config : std::false_type {};
+// Deduction accepts a class derived from a Config, which is what a named variant is.
 template <typename S, typename M, typename F, typename A, typename H, typename D, typename T>
-struct is_config<Config<S, M, F, A, H, D, T>> : std::true_type {};
+std::true_type derives_from_config(const Config<S, M, F, A, H, D, T>*);
+std::false_type derives_from_config(...);
 }  // namespace detail
 
-/// Any instantiation of Config (whose parameters the Config template has already checked).
+/// A Config, or a class derived from one (a named variant, see variants.hpp).
 template <typename C>
-concept RenderConfig = detail::is_config<C>::value;
+concept RenderConfig = decltype(detail::derives_from_config(std::declval<const C*>()))::value;
 
 }  // namespace glint

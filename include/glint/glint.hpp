@@ -2,7 +2,11 @@
 // Everything glint offers, in one include.
 
 #include "glint/config.hpp"
-#include "glint/io/image_output.hpp"
+#include "glint/error.hpp"
+#include "glint/generate/random_scene.hpp"
+#include "glint/image/film.hpp"
+#include "glint/io/image_reader.hpp"
+#include "glint/io/image_writer.hpp"
 #include "glint/io/scene_reader.hpp"
 #include "glint/io/scene_writer.hpp"
 #include "glint/render/renderer.hpp"

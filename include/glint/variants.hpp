@@ -1,43 +1,130 @@
 #pragma once
-// Named renderer variants. `report` is the renderer of the report; every other variant but
-// `fast` changes exactly one policy from it (an ablation), so comparing it with `report`
-// measures that one feature. `fast` combines the policies that give the best image per second.
+// Named renderer variants: the one list of them. `report` is the report's renderer; every other
+// variant but `fast` changes exactly one policy from it (an ablation), so comparing it with
+// `report` measures that one feature. `fast` combines the policies that give the best image per
+// second.
+//
+// Each variant is a type derived from its Config that carries its name, a line saying what it
+// changes and whether it converges to the report's image (as pbrt-v4's types carry Name()).
+// The glint-render-NAME executables, the benchmarks, the tests, bench/run-all's tables and the
+// README's variant table are all derived from `all`: adding a variant is a struct here plus its
+// entry in `all` (then `bench/run-all` or the README test says where the docs need a line).
 
+#include <string_view>
 #include <tuple>
+#include <type_traits>
 
 #include "glint/config.hpp"
 
-namespace glint::variants {
+namespace glint {
 
-using report = Config<IndependentSampler, ReportMaterialModel, ExactFresnel, GaussianAntialiasing,
-                      BuiltinShading, UniformHemisphere, FixedDepth>;
+/// What a named variant says about itself.
+struct VariantInfo {
+  std::string_view name;         ///< executable glint-render-NAME (with '-' for '_')
+  std::string_view description;  ///< what it changes from `report`, in a table's words
+  /// It estimates the same image as `report` (it changes only cost and noise); false for
+  /// ablations that change what is rendered (no Fresnel, another pixel filter, ...).
+  bool same_image_as_report;
+};
 
-// Fresnel
-using no_fresnel = report::with_fresnel<NoFresnel>;
-using schlick_fresnel = report::with_fresnel<SchlickFresnel>;
-// Antialiasing
-using no_antialiasing = report::with_antialiasing<NoAntialiasing>;
-using box_antialiasing = report::with_antialiasing<BoxAntialiasing>;
-using tent_antialiasing = report::with_antialiasing<TentAntialiasing>;
-// Light transport
-using cosine_hemisphere = report::with_diffuse_sampling<CosineHemisphere>;
-using stochastic_material = report::with_material_model<StochasticMaterialModel>;
-using russian_roulette = report::with_termination<RussianRoulette>;
-// Shading
-using uniform_shading = report::with_shading<UniformShading>;
-// Sampler
-using stratified_sampler = report::with_sampler<StratifiedSampler>;
-using sobol_sampler = report::with_sampler<SobolSampler>;
+namespace variants {
 
-// The best image per second measured by bench/run-all (bench/results/variants.md): one lobe
-// per bounce, cosine-weighted bounces, Russian roulette, and Sobol' samples for the first six
-// requests of a path (pure Sobol' costs more than it gains deep in the path).
-using fast = Config<HybridSobolSampler<6>, StochasticMaterialModel, ExactFresnel,
-                    GaussianAntialiasing, BuiltinShading, CosineHemisphere, RussianRoulette>;
+inline constexpr bool kSameImage = true;
+inline constexpr bool kDifferentImage = false;
 
-/// Every named variant, for tests that must hold for all of them.
-using all = std::tuple<report, no_fresnel, schlick_fresnel, no_antialiasing, box_antialiasing,
+struct report : Config<IndependentSampler, ReportMaterialModel, ExactFresnel, GaussianAntialiasing,
+                       BuiltinShading, UniformHemisphere, FixedDepth> {
+  static constexpr VariantInfo info{"report", "the report's renderer (baseline)", kSameImage};
+};
+
+// The best image per second measured by bench/run-all (bench/results/variants.md).
+struct fast : Config<HybridSobolSampler<6>, StochasticMaterialModel, ExactFresnel,
+                     GaussianAntialiasing, BuiltinShading, CosineHemisphere, RussianRoulette> {
+  static constexpr VariantInfo info{
+      "fast",
+      "Sobol' for the first 6 requests, one lobe per bounce, cosine bounces, Russian roulette",
+      kSameImage};
+};
+
+struct no_fresnel : report::with_fresnel<NoFresnel> {
+  static constexpr VariantInfo info{"no_fresnel", "no Fresnel on glass", kDifferentImage};
+};
+struct schlick_fresnel : report::with_fresnel<SchlickFresnel> {
+  static constexpr VariantInfo info{"schlick_fresnel", "Schlick's approximation for Fresnel",
+                                    kDifferentImage};
+};
+struct no_antialiasing : report::with_antialiasing<NoAntialiasing> {
+  static constexpr VariantInfo info{"no_antialiasing", "camera rays through pixel centres",
+                                    kDifferentImage};
+};
+struct box_antialiasing : report::with_antialiasing<BoxAntialiasing> {
+  static constexpr VariantInfo info{"box_antialiasing", "box pixel filter instead of Gaussian",
+                                    kDifferentImage};
+};
+struct tent_antialiasing : report::with_antialiasing<TentAntialiasing> {
+  static constexpr VariantInfo info{"tent_antialiasing", "tent pixel filter instead of Gaussian",
+                                    kDifferentImage};
+};
+struct cosine_hemisphere : report::with_diffuse_sampling<CosineHemisphere> {
+  static constexpr VariantInfo info{"cosine_hemisphere", "cosine-weighted diffuse bounces",
+                                    kSameImage};
+};
+struct stochastic_material : report::with_material_model<StochasticMaterialModel> {
+  static constexpr VariantInfo info{
+      "stochastic_material", "one material lobe per bounce, chosen by coefficient", kSameImage};
+};
+struct russian_roulette : report::with_path_termination<RussianRoulette> {
+  static constexpr VariantInfo info{"russian_roulette", "Russian roulette after 3 bounces",
+                                    kSameImage};
+};
+struct uniform_shading : report::with_sphere_shading<UniformShading> {
+  static constexpr VariantInfo info{
+      "uniform_shading", "one colour per sphere (rejects scenes with other shading kinds)",
+      kSameImage};
+};
+struct stratified_sampler : report::with_sampler<StratifiedSampler> {
+  static constexpr VariantInfo info{"stratified_sampler", "jittered stratified samples",
+                                    kSameImage};
+};
+struct sobol_sampler : report::with_sampler<SobolSampler> {
+  static constexpr VariantInfo info{"sobol_sampler", "Owen-scrambled Sobol' samples", kSameImage};
+};
+
+/// Every named variant, `report` first: the order of every table.
+using all = std::tuple<report, fast, no_fresnel, schlick_fresnel, no_antialiasing, box_antialiasing,
                        tent_antialiasing, cosine_hemisphere, stochastic_material, russian_roulette,
-                       uniform_shading, stratified_sampler, sobol_sampler, fast>;
+                       uniform_shading, stratified_sampler, sobol_sampler>;
 
-}  // namespace glint::variants
+/// The variant glint-render (without a suffix) is built with.
+using default_variant = fast;
+
+/// Calls `visit.template operator()<V>()` for each variant V of `all`, in order.
+template <typename Visit>
+constexpr void for_each(Visit&& visit) {
+  [&]<typename... V>(std::type_identity<std::tuple<V...>>) {
+    (visit.template operator()<V>(), ...);
+  }(std::type_identity<all>{});
+}
+
+/// Calls `visit.template operator()<V>()` for the variant named `name`; false if none is.
+template <typename Visit>
+constexpr bool visit_by_name(std::string_view name, Visit&& visit) {
+  bool found = false;
+  for_each([&]<typename V>() {
+    if (!found && V::info.name == name) {
+      found = true;
+      visit.template operator()<V>();
+    }
+  });
+  return found;
+}
+
+}  // namespace variants
+
+/// A named variant: a RenderConfig that carries its VariantInfo.
+template <typename V>
+concept NamedVariant = RenderConfig<V> && requires {
+  { V::info } -> std::convertible_to<VariantInfo>;
+};
+
+}  // namespace glint

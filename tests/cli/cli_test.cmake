@@ -56,7 +56,7 @@ glint_cli_test(quiet STATUS 0 STDERR "^$" EXPECT_OUTPUT OUTPUT tiny.png
 # A shading kind the variant's policy lacks is rejected when the scene is loaded; the example
 # program with its own policy renders the same scene.
 set(glint_striped_scene ${PROJECT_SOURCE_DIR}/examples/custom_shading/striped.scene)
-glint_cli_test(unsupported-shading STATUS 1
+glint_cli_test(unsupported-shading STATUS 3
                STDERR "striped.scene:[0-9]+: error: shading 'custom' is not supported"
                ARGS ${glint_striped_scene} -o out.png OUTPUT out.png)
 if(TARGET glint-custom-shading)

@@ -5,6 +5,6 @@ add_executable(glint-compile-fail-wrong-policy EXCLUDE_FROM_ALL
 target_link_libraries(glint-compile-fail-wrong-policy PRIVATE glint::glint)
 add_test(NAME "compile-fail: a wrong policy names its concept"
   COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR}
-          -DTARGET=glint-compile-fail-wrong-policy -DCONCEPT=FresnelModel
+          -DTARGET=glint-compile-fail-wrong-policy -DCONCEPT=Fresnel
           -P ${CMAKE_CURRENT_LIST_DIR}/expect_build_failure.cmake)
 set_tests_properties("compile-fail: a wrong policy names its concept" PROPERTIES LABELS compile)

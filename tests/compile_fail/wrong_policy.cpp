@@ -1,4 +1,4 @@
-// Must NOT compile: int is not a FresnelModel. The test checks that the compiler's message
+// Must NOT compile: int is not a Fresnel. The test checks that the compiler's message
 // names the violated concept.
 #include "glint/config.hpp"
 

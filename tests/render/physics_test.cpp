@@ -253,7 +253,7 @@ TEMPLATE_LIST_TEST_CASE("clear glass in a uniform enclosure conserves energy", "
   add_sphere(scene, Vec3(0.0f), 10.0f).material = glass_material(1.5f);
   add_sphere(scene, {0.0f, 0.0f, -4.0f}, 3.0f).material = glass_material(1.0f);  // a bubble
   const glint::Film film = render<TestType>(scene, settings(8, 8, 8, 64));
-  if constexpr (!TestType::termination::uses_roulette) {
+  if constexpr (!TestType::path_termination::uses_roulette) {
     check_every_pixel(film, le);
   } else {
     double sum = 0.0, sum2 = 0.0;

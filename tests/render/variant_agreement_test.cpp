@@ -48,7 +48,7 @@ struct BlockStatistics {
 template <typename Variant>
 BlockStatistics render_blocks(const glint::Scene& scene) {
   std::array<std::vector<double>, kBlocksPerSide * kBlocksPerSide> per_seed;
-  glint::RenderSettings settings = glint::RenderSettings::from(scene.description());
+  glint::RenderSettings settings = glint::RenderSettings::from(scene);
   settings.threads = 2;
   for (int seed = 0; seed < kSeeds; ++seed) {
     settings.seed = std::uint64_t(seed) + 100;
@@ -125,7 +125,7 @@ sphere     center=0,0,100040 radius=100000 diffuse=0 emission=1,1,1
 sphere     center=0,0,0 radius=5 transparent=1 ior=1.5
 )",
                                                                         "fresnel"));
-  glint::RenderSettings settings = glint::RenderSettings::from(scene.description());
+  glint::RenderSettings settings = glint::RenderSettings::from(scene);
   const float with =
       glint::Renderer<glint::variants::report>::render(scene, settings).film.at(4, 4).x;
   const float without =

@@ -14,7 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "glint/io/image_output.hpp"
+#include "glint/io/image_reader.hpp"
+#include "glint/io/image_writer.hpp"
 #include "stb_image.h"
 
 namespace fs = std::filesystem;

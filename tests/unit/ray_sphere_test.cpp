@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -472,30 +473,29 @@ TEST_CASE("Scene: origin-sphere rule, by hand", "[geometry][sphere_set]") {
 
   SECTION("leaving outwards: the origin sphere is never hit") {
     const auto ray = glint::ray_leaving_sphere(on_surface, outward, 0, outward);
-    glint::SphereHit hit;
-    REQUIRE(scene.intersect(ray, hit));
-    CHECK(hit.sphere == 2u);
-    CHECK(hit.t == Approx(7.0));
-    CHECK_FALSE(alone.intersect(ray, hit));
+    const std::optional<glint::SphereHit> hit = scene.closest_hit(ray);
+    REQUIRE(hit);
+    CHECK(hit->sphere == 2u);
+    CHECK(hit->t == Approx(7.0));
+    CHECK_FALSE(alone.closest_hit(ray));
     CHECK_FALSE(alone.occluded(ray));
   }
   SECTION("a tangent direction counts as outwards") {
     const auto ray = glint::ray_leaving_sphere(on_surface, {0.0f, 1.0f, 0.0f}, 0, outward);
     CHECK_FALSE(ray.heads_into_origin_sphere);
-    glint::SphereHit hit;
-    CHECK_FALSE(scene.intersect(ray, hit));
+    CHECK_FALSE(scene.closest_hit(ray));
     CHECK_FALSE(scene.occluded(ray));
   }
   SECTION("heading inwards: nearer spheres first, then only the far side") {
     const auto ray = glint::ray_leaving_sphere(on_surface, -outward, 0, outward);
-    glint::SphereHit hit;
-    REQUIRE(scene.intersect(ray, hit));
-    CHECK(hit.sphere == 1u);
-    CHECK(hit.t == Approx(1.5));
-    glint::SphereHit far;
-    REQUIRE(alone.intersect(ray, far));
-    CHECK(far.sphere == 0u);
-    CHECK(far.t == 4.0f);
+    const std::optional<glint::SphereHit> hit = scene.closest_hit(ray);
+    REQUIRE(hit);
+    CHECK(hit->sphere == 1u);
+    CHECK(hit->t == Approx(1.5));
+    const std::optional<glint::SphereHit> far = alone.closest_hit(ray);
+    REQUIRE(far);
+    CHECK(far->sphere == 0u);
+    CHECK(far->t == 4.0f);
     // Shadow rays: the far side at 4 blocks only a light beyond it.
     auto shadow = ray;
     shadow.t_max = 3.0f;
@@ -539,16 +539,15 @@ TEST_CASE("Scene: self-intersection is impossible on random surface points",
     const Vec3 d = random_unit_vector(rng);
     const Vec3 out = glm::dot(d, n) > 0.0f ? d : -d;
     const auto outwards = glint::ray_leaving_sphere(c + r * n, out, 0, n);
-    glint::SphereHit hit;
-    CHECK_FALSE(scene.intersect(outwards, hit));
+    CHECK_FALSE(scene.closest_hit(outwards));
     CHECK_FALSE(scene.occluded(outwards));
     const auto inwards = glint::ray_leaving_sphere(c + r * n, -out, 0, n);
     if (glm::dot(-out, n) > -1e-3f) continue;  // nearly tangent: the chord is ~0
-    glint::SphereHit far;
-    REQUIRE(scene.intersect(inwards, far));
-    CHECK(far.sphere == 0u);
+    const std::optional<glint::SphereHit> far = scene.closest_hit(inwards);
+    REQUIRE(far);
+    CHECK(far->sphere == 0u);
     const double chord = -2.0 * double(r) * glm::dot(-out, n);
-    CHECK(std::abs(far.t - chord) <= 8.0 * kUnitRoundoff * (glm::length(c) + r));
+    CHECK(std::abs(far->t - chord) <= 8.0 * kUnitRoundoff * (glm::length(c) + r));
   }
 }
 
@@ -584,8 +583,9 @@ TEST_CASE("SphereSet, SphereBvh and Scene match a brute-force loop over intersec
         {
           const glint::Ray ray = random_ray(rng, indexed);
           const Reference ref = brute_force(indexed, ray, /*apply_origin_rule=*/true);
-          glint::SphereHit hit;
-          const bool found = scene.intersect(ray, hit);
+          const std::optional<glint::SphereHit> closest = scene.closest_hit(ray);
+          const bool found = closest.has_value();
+          const glint::SphereHit hit = closest.value_or(glint::SphereHit{});
           INFO(count << " spheres in a scene; " << describe(ray, ref) << "; got " << found
                      << " sphere " << int(hit.sphere) << " t=" << hit.t);
           CHECK(acceptable(ref, found, hit));

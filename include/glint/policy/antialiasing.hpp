@@ -37,7 +37,7 @@ struct TentAntialiasing {
   static Vec2 offset(Vec2 u, float) { return {tent(u.x), tent(u.y)}; }
 };
 
-static_assert(AntiAliasing<NoAntialiasing> && AntiAliasing<GaussianAntialiasing> &&
-              AntiAliasing<BoxAntialiasing> && AntiAliasing<TentAntialiasing>);
+static_assert(Antialiasing<NoAntialiasing> && Antialiasing<GaussianAntialiasing> &&
+              Antialiasing<BoxAntialiasing> && Antialiasing<TentAntialiasing>);
 
 }  // namespace glint

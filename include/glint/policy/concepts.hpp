@@ -53,14 +53,14 @@ concept MaterialModel = requires {
 /// Fresnel reflectance of a dielectric interface, used for fully transparent spheres.
 /// cos_incident is measured on the incident side; eta_* are the refractive indices.
 template <typename F>
-concept FresnelModel = requires(float cos_incident, float eta_incident, float eta_transmitted) {
+concept Fresnel = requires(float cos_incident, float eta_incident, float eta_transmitted) {
   { F::enabled } -> std::convertible_to<bool>;
   { F::reflectance(cos_incident, eta_incident, eta_transmitted) } -> std::same_as<float>;
 };
 
 /// Where in the pixel a primary ray goes: an offset from the pixel centre, in pixels.
 template <typename A>
-concept AntiAliasing = requires(Vec2 u, float sigma) {
+concept Antialiasing = requires(Vec2 u, float sigma) {
   { A::enabled } -> std::convertible_to<bool>;
   { A::offset(u, sigma) } -> std::same_as<Vec2>;
 };

@@ -55,7 +55,6 @@ struct SchlickFresnel {
   }
 };
 
-static_assert(FresnelModel<NoFresnel> && FresnelModel<ExactFresnel> &&
-              FresnelModel<SchlickFresnel>);
+static_assert(Fresnel<NoFresnel> && Fresnel<ExactFresnel> && Fresnel<SchlickFresnel>);
 
 }  // namespace glint

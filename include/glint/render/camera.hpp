@@ -35,8 +35,6 @@ class Camera {
     return ray;
   }
 
-  const Vec3& forward() const { return forward_; }
-
  private:
   Vec3 position_;
   Vec3 forward_{}, right_{}, up_{};

@@ -1,18 +1,11 @@
 #pragma once
-// The radiance estimator, generic over a Config. Units (see README): a point light of
-// intensity I (W/sr) at distance d gives irradiance I * colour * cos(theta) / d^2; a diffuse
-// lobe reflects diffuse * colour / pi of its irradiance as radiance.
-//
-// Two material models share the per-hit physics below:
-//  - the report's (traces_every_lobe): every lobe contributes, mirror and refraction rays are
-//    all traced, so a path is a tree;
-//  - the stochastic one: one lobe is chosen per bounce with probability proportional to its
-//    coefficient, so a path is a chain with the same expectation.
-// In both, a diffuse hit gathers the point lights directly (with hard shadows) and bounces
-// once in a random direction; emission is picked up wherever a ray lands.
+// PathTracer<Config>: the radiance estimator, generic over a Config. Units (see README): a point
+// light of intensity I (W/sr) at distance d gives irradiance I * colour * cos(theta) / d^2; a
+// diffuse lobe reflects diffuse * colour / pi of its irradiance as radiance.
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include "glint/config.hpp"
 #include "glint/geometry/ray.hpp"
@@ -28,6 +21,7 @@ struct TraceCounters {
 
 namespace detail {
 
+/// The side of a surface a ray arrives on.
 struct Interface {
   Vec3 facing_normal;  ///< unit normal on the side the ray came from
   float cos_incident;  ///< cosine between the reversed ray and facing_normal, in [0, 1]
@@ -44,25 +38,36 @@ inline Vec3 reflect(const Vec3& direction, const Interface& at) {
   return direction + (2.0f * at.cos_incident) * at.facing_normal;
 }
 
-/// Snell's law; false on total internal reflection.
-inline bool refract(const Vec3& direction, const Interface& at, float eta, Vec3& refracted) {
+/// The refracted direction by Snell's law (eta = incident index / transmitted index); none on
+/// total internal reflection.
+inline std::optional<Vec3> refract(const Vec3& direction, const Interface& at, float eta) {
   const float sin2_transmitted = eta * eta * (1.0f - at.cos_incident * at.cos_incident);
-  if (sin2_transmitted >= 1.0f) return false;
+  if (sin2_transmitted >= 1.0f) return std::nullopt;
   const float cos_transmitted = std::sqrt(1.0f - sin2_transmitted);
-  refracted = glm::normalize(eta * direction +
-                             (eta * at.cos_incident - cos_transmitted) * at.facing_normal);
-  return true;
+  return glm::normalize(eta * direction +
+                        (eta * at.cos_incident - cos_transmitted) * at.facing_normal);
 }
 
 }  // namespace detail
 
+/// Estimates the radiance arriving along camera rays, with the policies of Config C.
+///
+/// Two estimators share the per-hit physics below, chosen by C::material_model:
+///  - the tree (ReportMaterialModel, the report's): every lobe with a non-zero coefficient
+///    contributes, weighted by it; mirror and refraction rays are all traced, so a path
+///    branches into a tree, exponential in depth for materials that mix both;
+///  - the chain (StochasticMaterialModel): one lobe per bounce, chosen with probability
+///    proportional to its coefficient, so a path is a chain with the same expectation.
+/// In both, a diffuse hit gathers the point lights directly (with hard shadows) and bounces
+/// once in a direction drawn by C::diffuse_sampling; emission is picked up wherever a ray
+/// lands, and C::path_termination may end a path before the maximum depth.
 template <RenderConfig C>
 class PathTracer {
  public:
   using SamplerType = typename C::sampler;
 
   PathTracer(const Scene& scene, int max_depth)
-      : scene_(scene), background_(scene.description().background), max_depth_(max_depth) {}
+      : scene_(scene), background_(scene.background()), max_depth_(max_depth) {}
 
   /// Radiance arriving along `ray` (a camera ray).
   Color radiance(const Ray& ray, SamplerType& sampler, TraceCounters& counters) const {
@@ -93,143 +98,155 @@ class PathTracer {
   }
 
  private:
-  struct SpecularChoice {
-    Vec3 direction;
-    bool valid;
+  /// A diffuse bounce: the ray and its weight cos(theta) / pdf.
+  struct Bounce {
+    Ray ray;
+    float weight;
   };
 
   /// The direction light continues in through a transparent surface: refracted, or reflected
   /// on total internal reflection or (fully transparent spheres with Fresnel) with
   /// probability F.
-  SpecularChoice transmission(const Ray& ray, const detail::Interface& at,
-                              const SurfaceProperties& m, SamplerType& sampler) const {
-    const float eta_incident = at.from_inside ? m.ior_inside : m.ior_outside;
-    const float eta_transmitted = at.from_inside ? m.ior_outside : m.ior_inside;
-    Vec3 refracted;
-    if (!detail::refract(ray.direction, at, eta_incident / eta_transmitted, refracted))
-      return {detail::reflect(ray.direction, at), true};
+  Vec3 transmitted_direction(const Ray& ray, const detail::Interface& at,
+                             const SurfaceProperties& surface, SamplerType& sampler) const {
+    const float ior_inside = surface.material.ior;
+    const float eta_incident = at.from_inside ? ior_inside : surface.ior_outside;
+    const float eta_transmitted = at.from_inside ? surface.ior_outside : ior_inside;
+    const std::optional<Vec3> refracted =
+        detail::refract(ray.direction, at, eta_incident / eta_transmitted);
+    if (!refracted) return detail::reflect(ray.direction, at);
     if constexpr (C::fresnel::enabled) {
-      if (m.fully_transparent) {
+      if (surface.fully_transparent) {
         const float reflectance =
             C::fresnel::reflectance(at.cos_incident, eta_incident, eta_transmitted);
-        if (sampler.next_1d() < reflectance) return {detail::reflect(ray.direction, at), true};
+        if (sampler.next_1d() < reflectance) return detail::reflect(ray.direction, at);
       }
     }
-    return {refracted, true};
+    return *refracted;
   }
 
-  Color diffuse_albedo(const SurfaceProperties& m, const SurfaceHit& hit) const {
-    return m.diffuse * C::shading::color(m.shading, m.diffuse_color, hit.local_direction);
+  /// Diffuse coefficient times the sphere's colour at the hit point.
+  static Color diffuse_albedo(const SurfaceProperties& surface, const SurfaceHit& hit) {
+    const Material& m = surface.material;
+    return m.diffuse *
+           C::sphere_shading::color(surface.shading, m.diffuse_color, hit.local_direction);
   }
 
-  Ray bounce_ray(const SurfaceHit& hit, const detail::Interface& at, SamplerType& sampler,
-                 float& weight) const {
+  Bounce diffuse_bounce(const SurfaceHit& hit, const detail::Interface& at,
+                        SamplerType& sampler) const {
     const DirectionSample sample = C::diffuse_sampling::sample(sampler.next_2d());
-    weight = sample.weight;
     const Vec3 direction = Frame::around(at.facing_normal).to_world(sample.local_direction);
-    return ray_leaving_sphere(hit.point, direction, hit.sphere, hit.outward_normal);
+    return {ray_leaving_sphere(hit.point, direction, hit.sphere, hit.outward_normal),
+            sample.weight};
   }
 
-  /// Russian roulette hook: false ends the path; otherwise `weight` is scaled by 1/p.
-  bool survives(int depth, float throughput, SamplerType& sampler, float& weight) const {
-    if constexpr (C::termination::uses_roulette) {
-      const float p = C::termination::continue_probability(depth, throughput);
+  /// Russian roulette: none if the path ends here, otherwise the weight 1/p that keeps the
+  /// estimate unbiased (1 when the policy does not play).
+  std::optional<float> roulette_weight(int depth, float throughput, SamplerType& sampler) const {
+    if constexpr (C::path_termination::uses_roulette) {
+      const float p = C::path_termination::continue_probability(depth, throughput);
       if (p < 1.0f) {
-        if (sampler.next_1d() >= p) return false;
-        weight /= p;
+        if (sampler.next_1d() >= p) return std::nullopt;
+        return 1.0f / p;
       }
     }
-    return true;
+    return 1.0f;
   }
 
+  /// The report's estimator: every lobe, recursively. `throughput` is the largest colour
+  /// component of the path's weight so far, for the roulette policy.
   Color trace_tree(const Ray& ray, int depth, float throughput, SamplerType& sampler,
                    TraceCounters& counters) const {
     ++counters.rays;
-    SphereHit hit;
-    if (!scene_.intersect(ray, hit)) return background_;
-    const SurfaceHit surface = scene_.surface_hit(ray, hit);
-    const SurfaceProperties& m = scene_.surface(hit.sphere);
-    const detail::Interface at = detail::interface_at(ray, surface.outward_normal);
+    const std::optional<SphereHit> hit = scene_.closest_hit(ray);
+    if (!hit) return background_;
+    const SurfaceHit surface_hit = scene_.surface_hit(ray, *hit);
+    const SurfaceProperties& surface = scene_.surface(hit->sphere);
+    const Material& m = surface.material;
+    const detail::Interface at = detail::interface_at(ray, surface_hit.outward_normal);
 
     Color radiance = m.emission;
-    float continuation = 1.0f;
-    const bool bounce = depth < max_depth_ && survives(depth, throughput, sampler, continuation);
+    std::optional<float> continuation;
+    if (depth < max_depth_) continuation = roulette_weight(depth, throughput, sampler);
 
     if (m.diffuse > 0.0f) {
-      const Color albedo = diffuse_albedo(m, surface);
-      Color incoming = kInvPi * direct_irradiance(surface.point, at.facing_normal,
-                                                  surface.outward_normal, hit.sphere, counters);
-      if (bounce) {
-        float weight;
-        const Ray next = bounce_ray(surface, at, sampler, weight);
-        const float factor = weight * kInvPi * continuation;
+      const Color albedo = diffuse_albedo(surface, surface_hit);
+      Color incoming =
+          kInvPi * direct_irradiance(surface_hit.point, at.facing_normal,
+                                     surface_hit.outward_normal, hit->sphere, counters);
+      if (continuation) {
+        const Bounce bounce = diffuse_bounce(surface_hit, at, sampler);
+        const float factor = bounce.weight * kInvPi * *continuation;
         incoming +=
-            factor * trace_tree(next, depth + 1, throughput * max_component(albedo) * factor,
+            factor * trace_tree(bounce.ray, depth + 1, throughput * max_component(albedo) * factor,
                                 sampler, counters);
       }
       radiance += albedo * incoming;
     }
-    if (bounce && m.mirror > 0.0f) {
-      const Ray next = ray_leaving_sphere(surface.point, detail::reflect(ray.direction, at),
-                                          hit.sphere, surface.outward_normal);
-      const Color weight = (m.mirror * continuation) * m.mirror_color;
+    if (continuation && m.mirror > 0.0f) {
+      const Ray next = ray_leaving_sphere(surface_hit.point, detail::reflect(ray.direction, at),
+                                          hit->sphere, surface_hit.outward_normal);
+      const Color weight = (m.mirror * *continuation) * m.mirror_color;
       radiance += weight * trace_tree(next, depth + 1, throughput * max_component(weight), sampler,
                                       counters);
     }
-    if (bounce && m.transparent > 0.0f) {
-      const SpecularChoice choice = transmission(ray, at, m, sampler);
+    if (continuation && m.transparent > 0.0f) {
       const Ray next =
-          ray_leaving_sphere(surface.point, choice.direction, hit.sphere, surface.outward_normal);
-      const Color weight = (m.transparent * continuation) * m.transparent_color;
+          ray_leaving_sphere(surface_hit.point, transmitted_direction(ray, at, surface, sampler),
+                             hit->sphere, surface_hit.outward_normal);
+      const Color weight = (m.transparent * *continuation) * m.transparent_color;
       radiance += weight * trace_tree(next, depth + 1, throughput * max_component(weight), sampler,
                                       counters);
     }
     return radiance;
   }
 
+  /// One lobe per bounce, iteratively.
   Color trace_chain(Ray ray, SamplerType& sampler, TraceCounters& counters) const {
     Color radiance(0.0f);
     Color throughput(1.0f);
     for (int depth = 0;; ++depth) {
       ++counters.rays;
-      SphereHit hit;
-      if (!scene_.intersect(ray, hit)) {
+      const std::optional<SphereHit> hit = scene_.closest_hit(ray);
+      if (!hit) {
         radiance += throughput * background_;
         break;
       }
-      const SurfaceHit surface = scene_.surface_hit(ray, hit);
-      const SurfaceProperties& m = scene_.surface(hit.sphere);
-      const detail::Interface at = detail::interface_at(ray, surface.outward_normal);
+      const SurfaceHit surface_hit = scene_.surface_hit(ray, *hit);
+      const SurfaceProperties& surface = scene_.surface(hit->sphere);
+      const Material& m = surface.material;
+      const detail::Interface at = detail::interface_at(ray, surface_hit.outward_normal);
       radiance += throughput * m.emission;
 
       Color albedo(0.0f);
       if (m.diffuse > 0.0f) {
-        albedo = diffuse_albedo(m, surface);
+        albedo = diffuse_albedo(surface, surface_hit);
         radiance += (throughput * albedo) *
-                    (kInvPi * direct_irradiance(surface.point, at.facing_normal,
-                                                surface.outward_normal, hit.sphere, counters));
+                    (kInvPi * direct_irradiance(surface_hit.point, at.facing_normal,
+                                                surface_hit.outward_normal, hit->sphere, counters));
       }
       const float total = m.diffuse + m.mirror + m.transparent;
       if (depth >= max_depth_ || !(total > 0.0f)) break;
-      float continuation = 1.0f;
-      if (!survives(depth, max_component(throughput), sampler, continuation)) break;
+      const std::optional<float> continuation =
+          roulette_weight(depth, max_component(throughput), sampler);
+      if (!continuation) break;
 
       // Choose one lobe with probability coefficient / total; its weight is then
       // coefficient * colour / probability = total * colour (albedo already holds diffuse).
       const float u = sampler.next_1d() * total;
       if (u < m.diffuse) {
-        float weight;
-        ray = bounce_ray(surface, at, sampler, weight);
-        throughput *= albedo * (weight * kInvPi * total / m.diffuse * continuation);
+        const Bounce bounce = diffuse_bounce(surface_hit, at, sampler);
+        ray = bounce.ray;
+        throughput *= albedo * (bounce.weight * kInvPi * total / m.diffuse * *continuation);
       } else if (u < m.diffuse + m.mirror) {
-        ray = ray_leaving_sphere(surface.point, detail::reflect(ray.direction, at), hit.sphere,
-                                 surface.outward_normal);
-        throughput *= m.mirror_color * (total * continuation);
+        ray = ray_leaving_sphere(surface_hit.point, detail::reflect(ray.direction, at), hit->sphere,
+                                 surface_hit.outward_normal);
+        throughput *= m.mirror_color * (total * *continuation);
       } else {
-        const SpecularChoice choice = transmission(ray, at, m, sampler);
         ray =
-            ray_leaving_sphere(surface.point, choice.direction, hit.sphere, surface.outward_normal);
-        throughput *= m.transparent_color * (total * continuation);
+            ray_leaving_sphere(surface_hit.point, transmitted_direction(ray, at, surface, sampler),
+                               hit->sphere, surface_hit.outward_normal);
+        throughput *= m.transparent_color * (total * *continuation);
       }
     }
     return radiance;

@@ -12,55 +12,19 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
-#include <stdexcept>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "glint/config.hpp"
+#include "glint/image/film.hpp"
 #include "glint/render/camera.hpp"
-#include "glint/render/film.hpp"
 #include "glint/render/path_tracer.hpp"
+#include "glint/render/render_settings.hpp"
 #include "glint/scene/scene.hpp"
 
 namespace glint {
-
-struct RenderSettings {
-  int width = 800;
-  int height = 800;
-  int samples_per_pixel = 1000;
-  int max_depth = 12;
-  float antialias_sigma = 0.5f;  ///< pixels; used by antialiasing policies that take a width
-  std::uint64_t seed = 0;
-  int threads = 0;  ///< 0: one per hardware thread
-  int tile_size = 16;
-
-  /// The settings a scene file asks for.
-  static RenderSettings from(const SceneDescription& scene) {
-    RenderSettings settings;
-    settings.width = scene.image.width;
-    settings.height = scene.image.height;
-    settings.samples_per_pixel = scene.image.samples_per_pixel;
-    settings.max_depth = scene.image.max_depth;
-    settings.antialias_sigma = scene.antialias_sigma;
-    return settings;
-  }
-};
-
-struct RenderProgress {
-  std::size_t tiles_done = 0;
-  std::size_t tiles_total = 0;
-  double elapsed_seconds = 0.0;
-  double fraction() const { return tiles_total ? double(tiles_done) / double(tiles_total) : 1.0; }
-};
-
-struct RenderStats {
-  double seconds = 0.0;
-  std::uint64_t samples = 0;
-  std::uint64_t rays = 0;             ///< camera, bounce and shadow rays
-  std::uint64_t invalid_samples = 0;  ///< NaN or infinite samples, dropped (should be 0)
-  int threads = 0;
-};
 
 struct RenderResult {
   Film film;
@@ -69,47 +33,44 @@ struct RenderResult {
 
 using ProgressCallback = std::function<void(const RenderProgress&)>;
 
-/// Throws SceneError if the scene uses a shading kind that Config's shading policy lacks.
+/// The first sphere whose shading kind variant C's SphereShading policy does not support.
 template <RenderConfig C>
-void check_supported(const Scene& scene) {
-  const SceneDescription& description = scene.description();
-  for (const SphereDescription& sphere : description.spheres) {
-    if (!C::shading::supports(sphere.shading))
-      throw SceneError(description.source, sphere.line,
-                       "shading '" + std::string(to_string(sphere.shading)) +
-                           "' is not supported by this renderer variant");
-  }
+std::optional<std::uint32_t> first_unsupported_sphere(const Scene& scene) {
+  for (std::uint32_t i = 0; i < scene.sphere_count(); ++i)
+    if (!C::sphere_shading::supports(scene.surface(i).shading)) return i;
+  return std::nullopt;
 }
 
-inline void check_settings(const RenderSettings& s) {
-  const auto fail = [](const std::string& what) { throw std::invalid_argument("glint: " + what); };
-  if (s.width < 1 || s.width > kMaxImageSide || s.height < 1 || s.height > kMaxImageSide)
-    fail("image size must be between 1 and " + std::to_string(kMaxImageSide) + " pixels a side");
-  if (std::int64_t{s.width} * s.height > kMaxImagePixels)
-    fail("image size exceeds " + std::to_string(kMaxImagePixels) + " pixels");
-  if (s.samples_per_pixel < 1 || s.samples_per_pixel > kMaxSamplesPerPixel)
-    fail("samples per pixel must be between 1 and " + std::to_string(kMaxSamplesPerPixel));
-  if (s.max_depth < 0 || s.max_depth > kMaxDepth)
-    fail("max depth must be between 0 and " + std::to_string(kMaxDepth));
-  if (s.threads < 0 || s.threads > 4096) fail("thread count must be between 0 and 4096");
-  if (s.tile_size < 1 || s.tile_size > 1024) fail("tile size must be between 1 and 1024");
-  if (!(s.antialias_sigma >= 0.0f && s.antialias_sigma <= 100.0f))
-    fail("antialias sigma must be in [0, 100] pixels");
+/// Whether variant C can render the scene.
+template <RenderConfig C>
+bool is_supported(const Scene& scene) {
+  return !first_unsupported_sphere<C>(scene).has_value();
+}
+
+/// Throws UnsupportedSceneError, naming the sphere's line, if variant C cannot render the scene.
+template <RenderConfig C>
+void check_supported(const Scene& scene) {
+  if (const std::optional<std::uint32_t> sphere = first_unsupported_sphere<C>(scene))
+    throw UnsupportedSceneError(scene.source(), scene.sphere_line(*sphere),
+                                "shading '" +
+                                    std::string(to_string(scene.surface(*sphere).shading)) +
+                                    "' is not supported by this renderer variant");
 }
 
 template <RenderConfig C>
 class Renderer {
  public:
   /// Renders with the given settings; `progress`, if set, is called from the calling thread
-  /// as tiles complete (never from a worker).
+  /// as tiles complete (never from a worker). Throws SettingsError for settings outside the
+  /// limits and UnsupportedSceneError for a scene this variant cannot render.
   static RenderResult render(const Scene& scene, const RenderSettings& settings,
                              const ProgressCallback& progress = {}) {
-    check_settings(settings);
+    validate(settings);
     check_supported<C>(scene);
     const auto start = std::chrono::steady_clock::now();
 
     RenderResult result{Film(settings.width, settings.height), {}};
-    const Camera camera(scene.description().camera, settings.width, settings.height);
+    const Camera camera(scene.camera(), settings.width, settings.height);
     const PathTracer<C> tracer(scene, settings.max_depth);
 
     const int tiles_x = (settings.width + settings.tile_size - 1) / settings.tile_size;

@@ -1,12 +1,14 @@
 #pragma once
 // The render-ready scene: immutable after build, shared read-only by all render threads.
-// Geometry lives in two structures: a SphereSet (structure of arrays, scanned with SIMD) for
+// Geometry lives in two accelerators: a SphereSet (structure of arrays, scanned with SIMD) for
 // small scenes and for huge spheres such as walls, whose boxes would swallow everything in a
 // hierarchy, and a SphereBvh for the many ordinary spheres of large scenes. What shading needs
 // per sphere lives in one contiguous array of SurfaceProperties, touched only for a hit sphere.
+// Of the description, the scene keeps only what rendering and its error messages need.
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,23 +21,16 @@
 
 namespace glint {
 
+/// What shading needs to know of one sphere.
 struct SurfaceProperties {
+  Material material;
   Vec3 center;
-  Color diffuse_color;
-  float diffuse;
-  Color mirror_color;
-  float mirror;
-  Color transparent_color;
-  float transparent;
-  Color emission;
-  float ior_inside;
-  float ior_outside;  ///< from the inclusion tree
-  float radius;
+  float ior_outside;  ///< index of the medium around the sphere, from the inclusion tree
   ShadingKind shading;
-  bool fully_transparent;
-  bool emissive;
+  bool fully_transparent;  ///< the report applies Fresnel to these spheres only
 };
 
+/// Where a ray meets a sphere, with what shading needs of the geometry there.
 struct SurfaceHit {
   Vec3 point;
   Vec3 outward_normal;
@@ -46,40 +41,46 @@ struct SurfaceHit {
 class Scene {
  public:
   /// Validates the description (SceneError on any problem, with its line) and builds the
-  /// acceleration data and the inclusion tree.
+  /// accelerators and the inclusion tree.
   static Scene build(const SceneDescription& description) {
     validate(description);
     Scene scene;
-    scene.description_ = description;
+    scene.source_ = description.source;
+    scene.image_ = description.image;
+    scene.camera_ = description.camera;
+    scene.antialias_sigma_ = description.antialias_sigma;
+    scene.background_ = description.background;
+    scene.lights_ = description.lights;
     const InclusionTree tree = build_inclusion_tree(description);
     const float huge_radius = huge_radius_threshold(description);
     std::vector<SphereBvh::Input> hierarchy_spheres;
     scene.surfaces_.reserve(description.spheres.size());
+    scene.sphere_lines_.reserve(description.spheres.size());
     for (std::size_t i = 0; i < description.spheres.size(); ++i) {
       const SphereDescription& sphere = description.spheres[i];
-      const Material& m = sphere.material;
       const auto id = static_cast<std::uint32_t>(i);
       if (sphere.radius >= huge_radius)
         scene.linear_.add(sphere.center, sphere.radius, id);
       else
         hierarchy_spheres.push_back({sphere.center, sphere.radius, id});
-      scene.surfaces_.push_back(SurfaceProperties{
-          sphere.center, m.diffuse_color, m.diffuse, m.mirror_color, m.mirror, m.transparent_color,
-          m.transparent, m.emission, m.ior, tree.outside_ior[i], sphere.radius, sphere.shading,
-          m.is_fully_transparent(), m.is_emissive()});
+      scene.surfaces_.push_back(SurfaceProperties{sphere.material, sphere.center,
+                                                  tree.outside_ior[i], sphere.shading,
+                                                  sphere.material.is_fully_transparent()});
+      scene.sphere_lines_.push_back(sphere.line);
     }
     scene.hierarchy_ = SphereBvh(std::move(hierarchy_spheres));
     return scene;
   }
 
-  /// Nearest sphere along the ray in (t_min, t_max); false if none.
-  bool intersect(const Ray& ray, SphereHit& hit) const {
-    hit = SphereHit{};
+  /// The nearest sphere along the ray in (t_min, t_max), if any.
+  std::optional<SphereHit> closest_hit(const Ray& ray) const {
+    SphereHit hit;
     hit.t = ray.t_max;
     bool found = origin_sphere_hit(ray, hit);
     if (linear_.size() > 0) found = linear_.closest_hit(ray, hit) || found;
     if (!hierarchy_.empty()) found = hierarchy_.closest_hit(ray, hit) || found;
-    return found;
+    if (!found) return std::nullopt;
+    return hit;
   }
 
   /// Whether any sphere blocks the ray in (t_min, t_max).
@@ -99,11 +100,16 @@ class Scene {
 
   const SurfaceProperties& surface(std::uint32_t sphere) const { return surfaces_[sphere]; }
   std::size_t sphere_count() const { return surfaces_.size(); }
-  const std::vector<PointLight>& lights() const { return description_.lights; }
-  const SceneDescription& description() const { return description_; }
-  /// Spheres scanned linearly (all of a small scene; the huge ones of a large scene).
-  const SphereSet& linear_spheres() const { return linear_; }
-  const SphereBvh& hierarchy() const { return hierarchy_; }
+  /// The line of the scene file that defined a sphere (0 if it did not come from a file).
+  int sphere_line(std::uint32_t sphere) const { return sphere_lines_[sphere]; }
+  const std::vector<PointLight>& lights() const { return lights_; }
+  const CameraDescription& camera() const { return camera_; }
+  Color background() const { return background_; }
+  /// The image settings and pixel filter width the scene asks for.
+  const ImageDescription& image() const { return image_; }
+  float antialias_sigma() const { return antialias_sigma_; }
+  /// The file name (or label) the scene came from, for error messages.
+  const std::string& source() const { return source_; }
 
   /// Scenes up to this many spheres are scanned linearly: with SIMD, that beats a hierarchy.
   static constexpr std::size_t kLinearSceneSize = 64;
@@ -136,10 +142,16 @@ class Scene {
     return true;
   }
 
-  SceneDescription description_;
+  std::string source_;
+  ImageDescription image_;
+  CameraDescription camera_;
+  float antialias_sigma_ = defaults::antialias_sigma;
+  Color background_{0.0f};
+  std::vector<PointLight> lights_;
   SphereSet linear_;
   SphereBvh hierarchy_;
   std::vector<SurfaceProperties> surfaces_;
+  std::vector<int> sphere_lines_;
 };
 
 }  // namespace glint

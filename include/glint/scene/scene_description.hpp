@@ -7,15 +7,16 @@
 #include <string>
 #include <vector>
 
+#include "glint/scene/image_settings.hpp"
 #include "glint/scene/material.hpp"
 
 namespace glint {
 
 struct ImageDescription {
-  int width = 800;
-  int height = 800;
-  int samples_per_pixel = 1000;
-  int max_depth = 12;  ///< most bounces after the camera ray; 0 shows direct light only
+  int width = defaults::image_width;
+  int height = defaults::image_height;
+  int samples_per_pixel = defaults::samples_per_pixel;
+  int max_depth = defaults::max_depth;  ///< most bounces after the camera ray; 0: direct light
   int line = 0;
 };
 
@@ -47,9 +48,9 @@ struct SceneDescription {
   std::string source = "<scene>";  ///< file name (or a label) used in error messages
   ImageDescription image{};
   CameraDescription camera{};
-  float antialias_sigma = 0.5f;  ///< standard deviation of the primary-ray jitter, in pixels
-  Color background{0.0f};        ///< radiance of rays that escape the scene
-  float medium_ior = 1.0f;       ///< refractive index outside every transparent sphere
+  float antialias_sigma = defaults::antialias_sigma;  ///< Gaussian pixel filter width, pixels
+  Color background{0.0f};                             ///< radiance of rays that escape the scene
+  float medium_ior = 1.0f;  ///< refractive index outside every transparent sphere
   std::vector<PointLight> lights;
   std::vector<SphereDescription> spheres;
   // Lines of the statements that set the three scalars above (0: not from a file).

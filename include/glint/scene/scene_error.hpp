@@ -1,18 +1,19 @@
 #pragma once
-// The one error type for bad scenes, whether they come from a file or from library calls.
-// Its message has the compiler-style form "SOURCE:LINE: error: PROBLEM" so that editors and
+// The error type for bad scenes, whether they come from a file or from library calls. Its
+// message has the compiler-style form "SOURCE:LINE: error: PROBLEM" so that editors and
 // terminals can jump to the offending line.
 
-#include <stdexcept>
 #include <string>
+
+#include "glint/error.hpp"
 
 namespace glint {
 
-class SceneError : public std::runtime_error {
+class SceneError : public Error {
  public:
   /// line 0 means "no particular line" (a problem with the scene as a whole).
   SceneError(std::string source, int line, const std::string& problem)
-      : std::runtime_error(format(source, line, problem)),
+      : Error(format(source, line, problem)),
         source_(std::move(source)),
         line_(line),
         problem_(problem) {}
@@ -33,6 +34,13 @@ class SceneError : public std::runtime_error {
   std::string source_;
   int line_;
   std::string problem_;
+};
+
+/// A valid scene that asks for something the chosen renderer variant was built without (a
+/// shading kind its SphereShading policy does not support). Another variant can render it.
+class UnsupportedSceneError : public SceneError {
+ public:
+  using SceneError::SceneError;
 };
 
 }  // namespace glint

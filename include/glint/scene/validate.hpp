@@ -24,35 +24,7 @@
 
 namespace glint {
 
-/// Limits that reject absurd input before it turns into a huge allocation or an endless render.
-inline constexpr int kMaxImageSide = 1 << 15;
-/// A float RGB film of this many pixels takes 768 MiB; a side limit alone would allow 12 GiB.
-inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;
-inline constexpr int kMaxSamplesPerPixel = 1 << 20;
-inline constexpr int kMaxDepth = 1024;
-
 namespace detail {
-
-/// Joins message pieces. Unlike a chain of `"literal" + std::string(...)`, this does not set
-/// off GCC 12's false -Wrestrict warning (GCC bug 105651) when inlined.
-inline std::string concat(std::initializer_list<std::string_view> parts) {
-  std::size_t size = 0;
-  for (std::string_view part : parts)
-    size += part.size();
-  std::string out;
-  out.reserve(size);
-  for (std::string_view part : parts)
-    out.append(part);
-  return out;
-}
-
-/// Shortest round-trip text of a float; unlike std::to_string it ignores the C locale.
-inline std::string format_number(float value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  if (result.ec != std::errc{}) return "?";
-  return std::string(buffer, result.ptr);
-}
 
 inline bool finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -87,23 +59,9 @@ inline void check_material(const SceneDescription& scene, const Material& m, int
 
 inline void check_image(const SceneDescription& scene) {
   const ImageDescription& image = scene.image;
-  const auto fail = [&](const std::string& what) {
-    throw SceneError(scene.source, image.line, what);
-  };
-  if (image.width < 1 || image.width > kMaxImageSide || image.height < 1 ||
-      image.height > kMaxImageSide)
-    fail(concat({"image size must be between 1 and ", std::to_string(kMaxImageSide),
-                 " pixels a side, got ", std::to_string(image.width), "x",
-                 std::to_string(image.height)}));
-  if (std::int64_t{image.width} * image.height > kMaxImagePixels)
-    fail(concat({"image size ", std::to_string(image.width), "x", std::to_string(image.height),
-                 " exceeds ", std::to_string(kMaxImagePixels), " pixels"}));
-  if (image.samples_per_pixel < 1 || image.samples_per_pixel > kMaxSamplesPerPixel)
-    fail(concat({"spp must be between 1 and ", std::to_string(kMaxSamplesPerPixel), ", got ",
-                 std::to_string(image.samples_per_pixel)}));
-  if (image.max_depth < 0 || image.max_depth > kMaxDepth)
-    fail(concat({"max_depth must be between 0 and ", std::to_string(kMaxDepth), ", got ",
-                 std::to_string(image.max_depth)}));
+  const std::string problem =
+      image_settings_problem(image.width, image.height, image.samples_per_pixel, image.max_depth);
+  if (!problem.empty()) throw SceneError(scene.source, image.line, problem);
 }
 
 inline void check_camera(const SceneDescription& scene) {
@@ -138,10 +96,8 @@ inline void check_camera(const SceneDescription& scene) {
 }
 
 inline void check_antialias(const SceneDescription& scene) {
-  if (!(scene.antialias_sigma >= 0.0f && scene.antialias_sigma <= 100.0f))
-    throw SceneError(scene.source, scene.antialias_line,
-                     concat({"antialias sigma must be in [0, 100] pixels, got ",
-                             format_number(scene.antialias_sigma)}));
+  const std::string problem = antialias_sigma_problem(scene.antialias_sigma);
+  if (!problem.empty()) throw SceneError(scene.source, scene.antialias_line, problem);
 }
 
 inline void check_background(const SceneDescription& scene) {

@@ -17,10 +17,10 @@ int main(int argc, char** argv) {
   light.intensity = 100.0f;
   description.lights.push_back(light);
 
-  glint::RenderSettings settings = glint::RenderSettings::from(description);
+  const glint::Scene scene = glint::Scene::build(description);
+  glint::RenderSettings settings = glint::RenderSettings::from(scene);
   settings.width = settings.height = 32;
   settings.samples_per_pixel = 4;
-  const glint::Scene scene = glint::Scene::build(description);
   const glint::RenderResult result =
       glint::Renderer<glint::variants::report>::render(scene, settings);
   // Facing the light head on at distance 8: radiance = I / (pi d^2) = 100 / (64 pi).

@@ -1,4 +1,5 @@
 #pragma once
+// The image type that rendering produces and image files are written from or read into.
 
 #include <cstddef>
 #include <vector>

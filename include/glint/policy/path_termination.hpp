@@ -1,5 +1,5 @@
 #pragma once
-// Path termination policies.
+// Path termination policies: when a path stops.
 
 #include <algorithm>
 

@@ -1,0 +1,90 @@
+#pragma once
+// The settings of an image (size, samples per pixel, depth, pixel filter width): their
+// defaults, their limits and the one check of both. A scene file's `image` statement, the
+// random scene generator, RenderSettings and glint-render's options all take them from here.
+
+#include <charconv>
+#include <cstdint>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <system_error>
+
+namespace glint {
+
+/// The report's settings (800x800 pixels, 1000 samples per pixel, 12 bounces, a Gaussian pixel
+/// filter of standard deviation half a pixel): what a scene that sets nothing renders with.
+namespace defaults {
+inline constexpr int image_width = 800;
+inline constexpr int image_height = 800;
+inline constexpr int samples_per_pixel = 1000;
+inline constexpr int max_depth = 12;            ///< most bounces after the camera ray
+inline constexpr float antialias_sigma = 0.5f;  ///< pixels
+}  // namespace defaults
+
+/// Limits that reject absurd input before it turns into a huge allocation or an endless render.
+namespace limits {
+inline constexpr int max_image_side = 1 << 15;
+/// A float RGB film of this many pixels takes 768 MiB; a side limit alone would allow 12 GiB.
+inline constexpr std::int64_t max_image_pixels = std::int64_t{1} << 26;
+inline constexpr int max_samples_per_pixel = 1 << 20;
+inline constexpr int max_depth = 1024;
+inline constexpr float max_antialias_sigma = 100.0f;  ///< pixels
+inline constexpr int max_threads = 4096;
+inline constexpr int max_tile_size = 1024;
+}  // namespace limits
+
+namespace detail {
+
+/// Joins message pieces. Unlike a chain of `"literal" + std::string(...)`, this does not set
+/// off GCC 12's false -Wrestrict warning (GCC bug 105651) when inlined.
+inline std::string concat(std::initializer_list<std::string_view> parts) {
+  std::size_t size = 0;
+  for (std::string_view part : parts)
+    size += part.size();
+  std::string out;
+  out.reserve(size);
+  for (std::string_view part : parts)
+    out.append(part);
+  return out;
+}
+
+/// Shortest round-trip text of a float; unlike std::to_string it ignores the C locale.
+inline std::string format_number(float value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  if (result.ec != std::errc{}) return "?";
+  return std::string(buffer, result.ptr);
+}
+
+}  // namespace detail
+
+/// The first thing wrong with an image's size, samples per pixel or depth (named as in the
+/// scene format), or an empty string when all are within the limits.
+inline std::string image_settings_problem(int width, int height, int samples_per_pixel,
+                                          int max_depth) {
+  using detail::concat;
+  if (width < 1 || width > limits::max_image_side || height < 1 || height > limits::max_image_side)
+    return concat({"image size must be between 1 and ", std::to_string(limits::max_image_side),
+                   " pixels a side, got ", std::to_string(width), "x", std::to_string(height)});
+  if (std::int64_t{width} * height > limits::max_image_pixels)
+    return concat({"image size ", std::to_string(width), "x", std::to_string(height), " exceeds ",
+                   std::to_string(limits::max_image_pixels), " pixels"});
+  if (samples_per_pixel < 1 || samples_per_pixel > limits::max_samples_per_pixel)
+    return concat({"spp must be between 1 and ", std::to_string(limits::max_samples_per_pixel),
+                   ", got ", std::to_string(samples_per_pixel)});
+  if (max_depth < 0 || max_depth > limits::max_depth)
+    return concat({"max_depth must be between 0 and ", std::to_string(limits::max_depth), ", got ",
+                   std::to_string(max_depth)});
+  return {};
+}
+
+/// What is wrong with a pixel filter width, or an empty string.
+inline std::string antialias_sigma_problem(float sigma) {
+  if (sigma >= 0.0f && sigma <= limits::max_antialias_sigma) return {};
+  return detail::concat({"antialias sigma must be in [0, ",
+                         detail::format_number(limits::max_antialias_sigma), "] pixels, got ",
+                         detail::format_number(sigma)});
+}
+
+}  // namespace glint
