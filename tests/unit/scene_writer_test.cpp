@@ -1,5 +1,5 @@
 // The scene writer: exact text for known input, shortest floats that read back bit for bit,
-// and (once the reader exists) a full round trip through io/scene_reader.hpp.
+// and a full round trip through io/scene_reader.hpp.
 
 #include "glint/io/scene_writer.hpp"
 
@@ -12,12 +12,8 @@
 #include <sstream>
 #include <string>
 
-#include "glint/math/random.hpp"
-
-#if __has_include("glint/io/scene_reader.hpp")
 #include "glint/io/scene_reader.hpp"
-#define GLINT_HAVE_SCENE_READER 1
-#endif
+#include "glint/math/random.hpp"
 
 namespace {
 
@@ -116,7 +112,6 @@ glint::SceneDescription every_field_scene() {
   return scene;
 }
 
-#ifdef GLINT_HAVE_SCENE_READER
 std::uint32_t bits(float v) {
   return std::bit_cast<std::uint32_t>(v);
 }
@@ -166,7 +161,6 @@ void require_same_scene(const glint::SceneDescription& a, const glint::SceneDesc
     require_same(x.material.emission, y.material.emission);
   }
 }
-#endif
 
 }  // namespace
 
@@ -291,7 +285,7 @@ TEST_CASE("scene writer: non-finite numbers are refused with the key named", "[i
   glint::SphereDescription sphere;
   sphere.radius = std::numeric_limits<float>::infinity();
   scene.spheres.push_back(sphere);
-  CHECK_THROWS_AS(glint::format_scene(scene), std::invalid_argument);
+  CHECK_THROWS_AS(glint::format_scene(scene), glint::SceneWriteError);
   CHECK_THROWS_WITH(glint::format_scene(scene), Catch::Contains("radius"));
   scene.spheres.clear();
   scene.camera.fov_degrees = std::numeric_limits<float>::quiet_NaN();
@@ -316,7 +310,6 @@ TEST_CASE("scene writer: write_scene streams exactly the text of format_scene", 
   CHECK(out.str() == text);
 }
 
-#ifdef GLINT_HAVE_SCENE_READER
 TEST_CASE("scene writer: reading the text back gives the same description bit for bit",
           "[io][writer][reader]") {
   const glint::SceneDescription scene = every_field_scene();
@@ -326,9 +319,3 @@ TEST_CASE("scene writer: reading the text back gives the same description bit fo
   require_same_scene(scene, read);
   CHECK(glint::format_scene(read) == text);
 }
-#else
-TEST_CASE("scene writer: reading the text back gives the same description bit for bit",
-          "[io][writer][reader]") {
-  WARN("glint/io/scene_reader.hpp is not there yet: the round-trip test is compiled out");
-}
-#endif

@@ -13,13 +13,19 @@
 #include <cmath>
 #include <cstdint>
 #include <ostream>
-#include <stdexcept>
 #include <string>
 #include <system_error>
 
+#include "glint/error.hpp"
 #include "glint/scene/scene_description.hpp"
 
 namespace glint {
+
+/// A description that the format cannot express (a number that is not finite).
+class SceneWriteError : public Error {
+ public:
+  using Error::Error;
+};
 
 namespace detail {
 
@@ -35,7 +41,7 @@ inline bool same_bits(const Vec3& a, const Vec3& b) {
 /// file stays easy to read and edit by hand.
 inline void append_float(std::string& out, float v, const char* what) {
   if (!std::isfinite(v))
-    throw std::invalid_argument(std::string("cannot write a scene with a non-finite ") + what);
+    throw SceneWriteError(std::string("cannot write a scene with a non-finite ") + what);
   char general[32];
   char fixed[64];  // the longest plain form, the smallest subnormal, takes 48 characters
   const auto g = std::to_chars(general, general + sizeof general, v);
@@ -161,7 +167,7 @@ void emit_scene(const SceneDescription& scene, std::string& buffer, std::size_t 
 
 }  // namespace detail
 
-/// Writes `scene` to `out` in the glint text format. Throws std::invalid_argument if a number
+/// Writes `scene` to `out` in the glint text format. Throws SceneWriteError if a number
 /// is not finite (the format has no spelling for it); check `out` for I/O errors afterwards.
 inline void write_scene(std::ostream& out, const SceneDescription& scene) {
   std::string buffer;

@@ -6,6 +6,10 @@
 
 namespace glint {
 
+/// 2^64 divided by the golden ratio: an odd constant whose multiples are spread evenly
+/// modulo 2^64, used to separate the inputs of a hash.
+inline constexpr std::uint64_t kGoldenGamma = 0x9e3779b97f4a7c15ULL;
+
 /// A 64-bit finaliser (MurmurHash3 fmix64 constants): avalanches every input bit.
 constexpr std::uint64_t mix_bits(std::uint64_t v) {
   v ^= v >> 33;
@@ -19,9 +23,8 @@ constexpr std::uint64_t mix_bits(std::uint64_t v) {
 /// Hashes any number of integers into one well-mixed 64-bit value.
 template <typename... Ts>
 constexpr std::uint64_t hash_values(Ts... values) {
-  std::uint64_t h = 0x9e3779b97f4a7c15ULL;
-  ((h = mix_bits(
-        h ^ (static_cast<std::uint64_t>(values) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2)))),
+  std::uint64_t h = kGoldenGamma;
+  ((h = mix_bits(h ^ (static_cast<std::uint64_t>(values) + kGoldenGamma + (h << 6) + (h >> 2)))),
    ...);
   return h;
 }

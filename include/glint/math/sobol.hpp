@@ -1,0 +1,81 @@
+#pragma once
+// The first two dimensions of Sobol's sequence and hash-based Owen scrambling, on binary
+// fractions held in 32-bit integers (bit 31 is the first digit). Why the fast forms below equal
+// the definitions is shown in docs/notes/samplers.md.
+
+#include <cstdint>
+
+namespace glint {
+
+namespace detail {
+
+/// Bit reversal: turns a binary fraction's digits (most significant first) into an integer's
+/// (least significant first) and back.
+constexpr std::uint32_t reverse_bits(std::uint32_t v) {
+  v = (v << 16) | (v >> 16);
+  v = ((v & 0x00ff00ffu) << 8) | ((v >> 8) & 0x00ff00ffu);
+  v = ((v & 0x0f0f0f0fu) << 4) | ((v >> 4) & 0x0f0f0f0fu);
+  v = ((v & 0x33333333u) << 2) | ((v >> 2) & 0x33333333u);
+  v = ((v & 0x55555555u) << 1) | ((v >> 1) & 0x55555555u);
+  return v;
+}
+
+}  // namespace detail
+
+/// Column j of the generator matrix of the second dimension of Sobol's sequence, as a binary
+/// fraction (bit 31 is the first digit). That dimension's primitive polynomial is x + 1 with
+/// initial direction number m_1 = 1, so Sobol's recurrence reduces to v_j = v_{j-1} ^
+/// (v_{j-1} >> 1): row t of column j is C(j, t) mod 2, Pascal's triangle. The sampler uses the
+/// faster sobol_second_dimension below; this is the definition it is tested against.
+constexpr std::uint32_t sobol_generator_column(int j) {
+  std::uint32_t v = 0x80000000u;
+  for (int k = 0; k < j; ++k)
+    v ^= v >> 1;
+  return v;
+}
+
+/// The first dimension of Sobol's sequence (van der Corput in base 2), as a binary fraction.
+constexpr std::uint32_t sobol_first_dimension(std::uint32_t index) {
+  return detail::reverse_bits(index);
+}
+
+/// The second dimension of Sobol's sequence, as a binary fraction, with the digits still in
+/// reversed (integer) order: a subset-sum transform, one masked shift-xor per bit of a digit
+/// position instead of a 32-step matrix product.
+constexpr std::uint32_t sobol_second_dimension_reversed(std::uint32_t index) {
+  std::uint32_t v = index;
+  v ^= (v >> 1) & 0x55555555u;
+  v ^= (v >> 2) & 0x33333333u;
+  v ^= (v >> 4) & 0x0f0f0f0fu;
+  v ^= (v >> 8) & 0x00ff00ffu;
+  v ^= (v >> 16) & 0x0000ffffu;
+  return v;
+}
+
+constexpr std::uint32_t sobol_second_dimension(std::uint32_t index) {
+  return detail::reverse_bits(sobol_second_dimension_reversed(index));
+}
+
+/// A hash-based Owen scramble of a binary fraction given with its digits reversed (Laine and
+/// Karras 2012; Burley 2020): every step changes digit k only by a function of the digits
+/// less significant than it, which makes the whole an Owen scramble (preserving every
+/// (t, m, s)-net property). Returns the digits still reversed.
+constexpr std::uint32_t owen_scramble_reversed(std::uint32_t v, std::uint64_t key) {
+  const auto a = static_cast<std::uint32_t>(key);
+  const auto b = static_cast<std::uint32_t>(key >> 32);
+  v += a;
+  v ^= v * 0x9e3779b8u;
+  v *= b | 1u;
+  v ^= v * 0x7feb352cu;
+  v += b;
+  v ^= v * 0x846ca68au;
+  v ^= v * ((a >> 7) << 1);
+  return v;
+}
+
+/// An Owen scramble of a binary fraction in ordinary order (bit 31 the first digit).
+constexpr std::uint32_t owen_scramble(std::uint32_t fraction, std::uint64_t key) {
+  return detail::reverse_bits(owen_scramble_reversed(detail::reverse_bits(fraction), key));
+}
+
+}  // namespace glint

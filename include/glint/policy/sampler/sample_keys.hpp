@@ -1,0 +1,30 @@
+#pragma once
+// The keys a sampler derives its randomness from: one per (pixel, seed), one per dimension.
+
+#include <cstdint>
+
+#include "glint/math/random.hpp"
+#include "glint/policy/concepts.hpp"
+
+namespace glint {
+
+namespace detail {
+
+/// One key per (pixel, seed). The two inner hashes are independent, so their latencies
+/// overlap: cheaper than hashing the three values in sequence, which start() would pay for
+/// every sample.
+constexpr std::uint64_t pixel_key(const PixelSample& s) {
+  const std::uint64_t pixel = (std::uint64_t{s.y} << 32) | s.x;
+  return mix_bits(mix_bits(pixel) ^ mix_bits(s.seed + kGoldenGamma));
+}
+
+/// A key for one dimension of one pixel. mix_bits is a bijection, so distinct dimensions of a
+/// pixel never share a key, and its avalanche decorrelates neighbouring ones.
+constexpr std::uint64_t dimension_key(std::uint64_t pixel_key, std::uint32_t dimension,
+                                      std::uint32_t salt = 0) {
+  return mix_bits(pixel_key + (std::uint64_t{dimension} * 4 + salt + 1) * kGoldenGamma);
+}
+
+}  // namespace detail
+
+}  // namespace glint
