@@ -12,11 +12,8 @@
 
 namespace glint {
 
-struct RenderSettings {
-  int width = defaults::image_width;
-  int height = defaults::image_height;
-  int samples_per_pixel = defaults::samples_per_pixel;
-  int max_depth = defaults::max_depth;  ///< most bounces after the camera ray; 0: direct light
+/// The image settings plus what only a render decides.
+struct RenderSettings : ImageSettings {
   float antialias_sigma = defaults::antialias_sigma;  ///< pixels, for filters that take a width
   std::uint64_t seed = 0;
   int threads = 0;  ///< 0: one per hardware thread
@@ -25,10 +22,7 @@ struct RenderSettings {
   /// The settings a scene asks for (its file's `image` and `antialias` statements).
   static RenderSettings from(const Scene& scene) {
     RenderSettings settings;
-    settings.width = scene.image().width;
-    settings.height = scene.image().height;
-    settings.samples_per_pixel = scene.image().samples_per_pixel;
-    settings.max_depth = scene.image().max_depth;
+    static_cast<ImageSettings&>(settings) = scene.image();
     settings.antialias_sigma = scene.antialias_sigma();
     return settings;
   }
@@ -38,10 +32,7 @@ struct RenderSettings {
 /// messages as a scene file's `image` statement).
 inline void validate(const RenderSettings& s) {
   const auto fail = [](const std::string& problem) { throw SettingsError("glint: " + problem); };
-  if (std::string problem =
-          image_settings_problem(s.width, s.height, s.samples_per_pixel, s.max_depth);
-      !problem.empty())
-    fail(problem);
+  if (std::string problem = image_settings_problem(s); !problem.empty()) fail(problem);
   if (std::string problem = antialias_sigma_problem(s.antialias_sigma); !problem.empty())
     fail(problem);
   if (s.threads < 0 || s.threads > limits::max_threads)

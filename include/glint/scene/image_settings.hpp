@@ -59,11 +59,20 @@ inline std::string format_number(float value) {
 
 }  // namespace detail
 
+/// An image's size, samples per pixel and depth: what a scene file's `image` statement sets,
+/// and where RenderSettings starts from.
+struct ImageSettings {
+  int width = defaults::image_width;
+  int height = defaults::image_height;
+  int samples_per_pixel = defaults::samples_per_pixel;
+  int max_depth = defaults::max_depth;  ///< most bounces after the camera ray; 0: direct light
+};
+
 /// The first thing wrong with an image's size, samples per pixel or depth (named as in the
 /// scene format), or an empty string when all are within the limits.
-inline std::string image_settings_problem(int width, int height, int samples_per_pixel,
-                                          int max_depth) {
+inline std::string image_settings_problem(const ImageSettings& image) {
   using detail::concat;
+  const auto [width, height, samples_per_pixel, max_depth] = image;
   if (width < 1 || width > limits::max_image_side || height < 1 || height > limits::max_image_side)
     return concat({"image size must be between 1 and ", std::to_string(limits::max_image_side),
                    " pixels a side, got ", std::to_string(width), "x", std::to_string(height)});

@@ -12,11 +12,7 @@
 
 namespace glint {
 
-struct ImageDescription {
-  int width = defaults::image_width;
-  int height = defaults::image_height;
-  int samples_per_pixel = defaults::samples_per_pixel;
-  int max_depth = defaults::max_depth;  ///< most bounces after the camera ray; 0: direct light
+struct ImageDescription : ImageSettings {
   int line = 0;
 };
 

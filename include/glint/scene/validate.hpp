@@ -59,8 +59,7 @@ inline void check_material(const SceneDescription& scene, const Material& m, int
 
 inline void check_image(const SceneDescription& scene) {
   const ImageDescription& image = scene.image;
-  const std::string problem =
-      image_settings_problem(image.width, image.height, image.samples_per_pixel, image.max_depth);
+  const std::string problem = image_settings_problem(image);
   if (!problem.empty()) throw SceneError(scene.source, image.line, problem);
 }
 
