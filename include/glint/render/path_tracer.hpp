@@ -16,7 +16,8 @@ namespace glint {
 
 /// Per-thread tallies; plain integers, summed once at the end of a render.
 struct TraceCounters {
-  std::uint64_t rays = 0;
+  std::uint64_t rays = 0;             ///< camera, bounce and shadow rays
+  std::uint64_t invalid_samples = 0;  ///< NaN or infinite samples, dropped
 };
 
 namespace detail {

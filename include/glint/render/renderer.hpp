@@ -73,37 +73,33 @@ class Renderer {
     const Camera camera(scene.camera(), settings.width, settings.height);
     const PathTracer<C> tracer(scene, settings.max_depth);
 
-    const int tiles_x = (settings.width + settings.tile_size - 1) / settings.tile_size;
-    const int tiles_y = (settings.height + settings.tile_size - 1) / settings.tile_size;
-    const std::size_t tile_count = std::size_t(tiles_x) * std::size_t(tiles_y);
+    const TileGrid grid(settings);
     const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     const int thread_count = static_cast<int>(
-        std::min<std::size_t>(settings.threads > 0 ? settings.threads : hardware, tile_count));
+        std::min<std::size_t>(settings.threads > 0 ? settings.threads : hardware, grid.count));
 
     std::atomic<std::size_t> next_tile{0};
     std::atomic<std::size_t> tiles_done{0};
-    std::vector<WorkerTotals> totals(static_cast<std::size_t>(thread_count));
+    std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
     {
       std::vector<std::jthread> workers;
       workers.reserve(std::size_t(thread_count));
       for (int t = 0; t < thread_count; ++t) {
         workers.emplace_back([&, t] {
-          WorkerTotals& mine = totals[std::size_t(t)];
-          for (std::size_t tile = next_tile++; tile < tile_count; tile = next_tile++) {
-            const int x0 = int(tile % std::size_t(tiles_x)) * settings.tile_size;
-            const int y0 = int(tile / std::size_t(tiles_x)) * settings.tile_size;
-            render_tile(tracer, camera, settings, x0, y0, result.film, mine);
+          TraceCounters& mine = counters[std::size_t(t)].counters;
+          for (std::size_t tile = next_tile++; tile < grid.count; tile = next_tile++) {
+            render_tile(tracer, camera, settings, grid.tile(tile), result.film, mine);
             tiles_done.fetch_add(1, std::memory_order_release);
             tiles_done.notify_all();
           }
         });
       }
-      report_progress(tiles_done, tile_count, start, progress);
+      report_progress(tiles_done, grid.count, start, progress);
     }  // jthreads join here
 
-    for (const WorkerTotals& w : totals) {
-      result.stats.rays += w.counters.rays;
-      result.stats.invalid_samples += w.invalid_samples;
+    for (const PaddedCounters& c : counters) {
+      result.stats.rays += c.counters.rays;
+      result.stats.invalid_samples += c.counters.invalid_samples;
     }
     result.stats.samples = std::uint64_t(settings.width) * std::uint64_t(settings.height) *
                            std::uint64_t(settings.samples_per_pixel);
@@ -115,8 +111,7 @@ class Renderer {
 
   /// One pixel's estimate: the mean of its samples. Exposed for tests and benchmarks.
   static Color render_pixel(const PathTracer<C>& tracer, const Camera& camera,
-                            const RenderSettings& settings, int x, int y, TraceCounters& counters,
-                            std::uint64_t& invalid_samples) {
+                            const RenderSettings& settings, int x, int y, TraceCounters& counters) {
     typename C::sampler sampler;
     Color sum(0.0f);
     for (int s = 0; s < settings.samples_per_pixel; ++s) {
@@ -129,27 +124,45 @@ class Renderer {
       if (std::isfinite(sample.x) && std::isfinite(sample.y) && std::isfinite(sample.z))
         sum += sample;
       else
-        ++invalid_samples;
+        ++counters.invalid_samples;
     }
     return sum / float(settings.samples_per_pixel);
   }
 
  private:
+  /// Pixels [x0, x1) x [y0, y1).
+  struct Tile {
+    int x0, y0, x1, y1;
+  };
+
+  /// The image cut into square tiles, numbered row by row.
+  struct TileGrid {
+    explicit TileGrid(const RenderSettings& settings)
+        : size(settings.tile_size),
+          width(settings.width),
+          height(settings.height),
+          columns((width + size - 1) / size),
+          count(std::size_t(columns) * std::size_t((height + size - 1) / size)) {}
+    Tile tile(std::size_t index) const {
+      const int x0 = int(index % std::size_t(columns)) * size;
+      const int y0 = int(index / std::size_t(columns)) * size;
+      return {x0, y0, std::min(x0 + size, width), std::min(y0 + size, height)};
+    }
+    int size, width, height, columns;
+    std::size_t count;
+  };
+
   // Padded to a cache line so that threads never write to the same line.
-  struct alignas(64) WorkerTotals {
+  struct alignas(64) PaddedCounters {
     TraceCounters counters;
-    std::uint64_t invalid_samples = 0;
   };
 
   static void render_tile(const PathTracer<C>& tracer, const Camera& camera,
-                          const RenderSettings& settings, int x0, int y0, Film& film,
-                          WorkerTotals& totals) {
-    const int x1 = std::min(x0 + settings.tile_size, settings.width);
-    const int y1 = std::min(y0 + settings.tile_size, settings.height);
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x)
-        film.at(x, y) =
-            render_pixel(tracer, camera, settings, x, y, totals.counters, totals.invalid_samples);
+                          const RenderSettings& settings, const Tile& tile, Film& film,
+                          TraceCounters& counters) {
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x)
+        film.at(x, y) = render_pixel(tracer, camera, settings, x, y, counters);
   }
 
   static void report_progress(std::atomic<std::size_t>& tiles_done, std::size_t tile_count,
