@@ -1,8 +1,7 @@
 // glint-random-scene: writes a random scene in the glint format (the report's section 5).
-//
-// Exit status: 0 on success (also when not every sphere could be placed: a warning says how
-// many were), 1 for bad parameters or an I/O error, 2 for a bad command line.
+// The usage text (print_usage) lists the options and the exit statuses.
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -12,13 +11,15 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <system_error>
 #include <type_traits>
+#include <variant>
+#include <vector>
 
 #include "glint/generate/random_scene.hpp"
 #include "glint/io/scene_writer.hpp"
@@ -27,34 +28,87 @@ namespace {
 
 constexpr std::string_view kProgram = "glint-random-scene";
 
+using Parameters = glint::RandomSceneParameters;
+
+/// Shortest text that reads back as the same float, so that a header comment reproduces its
+/// file exactly; unlike std::to_string it ignores the C locale.
+std::string shortest(float v) {
+  char buffer[32];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, r.ptr);
+}
+
+/// A command-line option that sets one generator parameter.
+struct ParameterOption {
+  std::string_view name;
+  std::string_view value_name;
+  std::variant<float Parameters::*, int Parameters::*, std::uint64_t Parameters::*> member;
+  std::string help;       ///< the usage line, which ends with the default in parentheses
+  std::string note = {};  ///< a further usage line, if any
+};
+
+/// The options that set parameters: their parsing, their usage lines and the header comment
+/// that records how a file was made all come from this one list, in this order.
+const std::vector<ParameterOption>& parameter_options() {
+  static const std::vector<ParameterOption> options = {
+      {"--size", "S", &Parameters::domain_size, "side of the cube the spheres are placed in"},
+      {"--count", "N", &Parameters::sphere_count, "number of spheres"},
+      {"--diffuse", "P", &Parameters::diffuse_probability,
+       "probability of a diffuse sphere of random colour"},
+      {"--mirror", "P", &Parameters::mirror_probability, "probability of a mirror sphere"},
+      {"--transparent", "P", &Parameters::transparent_probability,
+       "probability of a glass sphere, index in [" +
+           shortest(float(glint::kRandomIor.low_value())) + ", " +
+           shortest(float(glint::kRandomIor.high_value())) + "]",
+       "the three probabilities must sum to 1"},
+      {"--min-radius", "R", &Parameters::min_radius, "smallest radius a sphere may get"},
+      {"--max-radius", "R", &Parameters::max_radius, "largest radius"},
+      {"--gap", "F", &Parameters::gap_fraction, "surfaces stay F * min-radius apart"},
+      {"--attempts", "N", &Parameters::max_attempts,
+       "centres tried per sphere before giving it up"},
+      {"--seed", "N", &Parameters::seed, "random seed, a 64-bit unsigned integer"},
+  };
+  return options;
+}
+
+/// The option's value in `p`, as the command line would give it.
+std::string value_text(const Parameters& p, const ParameterOption& option) {
+  return std::visit(
+      [&](auto member) {
+        const auto value = p.*member;
+        if constexpr (std::is_floating_point_v<decltype(value)>)
+          return shortest(value);
+        else
+          return std::to_string(value);
+      },
+      option.member);
+}
+
 void print_usage(std::ostream& out) {
-  const glint::RandomSceneParameters d;
+  const auto line = [&](std::string_view left, std::string_view text) {
+    constexpr std::size_t kTextColumn = 22;
+    std::string start = "  ";
+    start += left;
+    start.resize(std::max(kTextColumn, start.size() + 1), ' ');
+    out << start << text << "\n";
+  };
   out << "usage: " << kProgram << " [options] [-o OUT.scene]\n"
       << "\n"
       << "Writes a random scene: spheres in a cube room with red and green side walls, each\n"
       << "sphere as large as it can be (up to --max-radius) while any two spheres stay\n"
       << "disjoint or nested. The same options and seed always give the same file.\n"
       << "\n"
-      << "options (defaults are the report's):\n"
-      << "  --size S            side of the cube the spheres are placed in (" << d.domain_size
-      << ")\n"
-      << "  --count N           number of spheres (" << d.sphere_count << ")\n"
-      << "  --diffuse P         probability of a diffuse sphere of random colour ("
-      << d.diffuse_probability << ")\n"
-      << "  --mirror P          probability of a mirror sphere (" << d.mirror_probability << ")\n"
-      << "  --transparent P     probability of a glass sphere, index in [1.1, 1.9] ("
-      << d.transparent_probability << ")\n"
-      << "                      the three probabilities must sum to 1\n"
-      << "  --min-radius R      smallest radius a sphere may get (" << d.min_radius << ")\n"
-      << "  --max-radius R      largest radius (" << d.max_radius << ")\n"
-      << "  --gap F             surfaces stay F * min-radius apart (" << d.gap_fraction << ")\n"
-      << "  --attempts N        centres tried per sphere before giving it up (" << d.max_attempts
-      << ")\n"
-      << "  --seed N            random seed, a 64-bit unsigned integer (" << d.seed << ")\n"
-      << "  -o, --output FILE   write to FILE (atomically: FILE.tmp, then renamed) instead\n"
-      << "                      of standard output\n"
-      << "  -h, --help          show this help\n"
-      << "\n"
+      << "options (defaults are the report's):\n";
+  const Parameters defaults;
+  for (const ParameterOption& option : parameter_options()) {
+    line(std::string(option.name) + " " + std::string(option.value_name),
+         option.help + " (" + value_text(defaults, option) + ")");
+    if (!option.note.empty()) line("", option.note);
+  }
+  line("-o, --output FILE", "write to FILE (atomically: FILE.tmp, then renamed) instead");
+  line("", "of standard output");
+  line("-h, --help", "show this help");
+  out << "\n"
       << "exit status: 0 written (a warning on stderr if not every sphere fit), 1 bad\n"
       << "parameters or I/O error, 2 bad command line\n";
 }
@@ -90,14 +144,28 @@ T parse_number(std::string_view option, std::string_view text) {
   return value;
 }
 
+void set_parameter(Parameters& p, const ParameterOption& option, std::string_view text) {
+  std::visit(
+      [&](auto member) {
+        using T = std::remove_reference_t<decltype(p.*member)>;
+        p.*member = parse_number<T>(option.name, text);
+      },
+      option.member);
+}
+
+const ParameterOption* find_parameter_option(std::string_view name) {
+  for (const ParameterOption& option : parameter_options())
+    if (option.name == name) return &option;
+  return nullptr;
+}
+
 struct Options {
-  glint::RandomSceneParameters parameters;
+  Parameters parameters;
   std::optional<std::string> output;
 };
 
 Options parse_arguments(int argc, char** argv) {
   Options options;
-  glint::RandomSceneParameters& p = options.parameters;
   for (int i = 1; i < argc; ++i) {
     std::string_view arg = argv[i];
     if (arg == "-h" || arg == "--help") {
@@ -117,132 +185,117 @@ Options parse_arguments(int argc, char** argv) {
       if (i + 1 >= argc) usage_error("option " + std::string(arg) + " needs a value");
       return argv[++i];
     };
-    if (arg == "--size") {
-      p.domain_size = parse_number<float>(arg, value());
-    } else if (arg == "--count") {
-      p.sphere_count = parse_number<int>(arg, value());
-    } else if (arg == "--diffuse") {
-      p.diffuse_probability = parse_number<float>(arg, value());
-    } else if (arg == "--mirror") {
-      p.mirror_probability = parse_number<float>(arg, value());
-    } else if (arg == "--transparent") {
-      p.transparent_probability = parse_number<float>(arg, value());
-    } else if (arg == "--min-radius") {
-      p.min_radius = parse_number<float>(arg, value());
-    } else if (arg == "--max-radius") {
-      p.max_radius = parse_number<float>(arg, value());
-    } else if (arg == "--gap") {
-      p.gap_fraction = parse_number<float>(arg, value());
-    } else if (arg == "--attempts") {
-      p.max_attempts = parse_number<int>(arg, value());
-    } else if (arg == "--seed") {
-      p.seed = parse_number<std::uint64_t>(arg, value());
+    if (const ParameterOption* option = find_parameter_option(arg)) {
+      set_parameter(options.parameters, *option, value());
     } else if (arg == "-o" || arg == "--output") {
       const std::string_view path = value();
       if (path.empty()) usage_error("option " + std::string(arg) + " needs a file name");
       options.output = std::string(path);
-    } else if (inline_value) {
+    } else if (inline_value || arg.starts_with("-")) {
       usage_error("unknown option '" + std::string(arg) + "'");
     } else {
-      usage_error(arg.starts_with("-") ? "unknown option '" + std::string(arg) + "'"
-                                       : "unexpected argument '" + std::string(arg) + "'");
+      usage_error("unexpected argument '" + std::string(arg) + "'");
     }
   }
   return options;
 }
 
-/// Shortest text that reads back as the same float, so the header reproduces the file exactly.
-std::string exact(float v) {
-  char buffer[32];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, r.ptr);
+glint::RandomSceneResult generate(const Parameters& p) {
+  try {
+    return glint::generate_random_scene(p);
+  } catch (const glint::RandomSceneError& e) {
+    error(e.problem());
+  } catch (const std::bad_alloc&) {
+    error("out of memory for " + std::to_string(p.sphere_count) + " spheres");
+  }
+}
+
+void warn_if_incomplete(const glint::RandomSceneResult& result) {
+  if (result.complete()) return;
+  std::cerr << kProgram << ": warning: placed only " << result.placed << " of " << result.requested
+            << " spheres; use a larger --size, a smaller --min-radius, fewer spheres or more "
+               "--attempts\n";
 }
 
 /// A comment block that documents how to make the file again.
-std::string header(const glint::RandomSceneParameters& p, const glint::RandomSceneResult& r) {
+std::string header(const Parameters& p, const glint::RandomSceneResult& r) {
   std::ostringstream out;
-  out << "# Generated by " << kProgram << " --size " << exact(p.domain_size) << " --count "
-      << p.sphere_count << " --diffuse " << exact(p.diffuse_probability) << " --mirror "
-      << exact(p.mirror_probability) << " --transparent " << exact(p.transparent_probability)
-      << " --min-radius " << exact(p.min_radius) << " --max-radius " << exact(p.max_radius)
-      << " --gap " << exact(p.gap_fraction) << " --attempts " << p.max_attempts << " --seed "
-      << p.seed << "\n"
+  out << "# Generated by " << kProgram;
+  for (const ParameterOption& option : parameter_options())
+    out << " " << option.name << " " << value_text(p, option);
+  out << "\n"
       << "# " << r.wall_count << " wall spheres, then " << r.placed << " of " << r.requested
       << " random spheres\n";
   return out.str();
+}
+
+/// The file's contents: the header comment, then the scene.
+struct SceneFile {
+  std::string comment;
+  const glint::SceneDescription& scene;
+  void write(std::ostream& out) const {
+    out << comment;
+    glint::write_scene(out, scene);
+  }
+};
+
+void write_to_standard_output(const SceneFile& file) {
+  file.write(std::cout);
+  std::cout.flush();
+  if (!std::cout) error("cannot write to standard output");
+}
+
+/// For a device or a pipe (/dev/stdout, a FIFO), which a rename cannot replace, and must not.
+void write_in_place(const std::filesystem::path& target, const SceneFile& file) {
+  std::ofstream out(target, std::ios::binary);
+  if (!out) error("cannot open " + target.string() + ": " + std::strerror(errno));
+  file.write(out);
+  out.close();
+  if (!out) error("cannot write " + target.string() + ": " + std::strerror(errno));
+}
+
+/// Writes beside the target and renames: the rename is atomic, so the target is either the old
+/// file or the complete new one, never a half-written scene.
+void write_atomically(const std::filesystem::path& target, const SceneFile& file) {
+  std::filesystem::path temporary = target;
+  temporary += ".tmp";
+  const auto give_up = [&](const std::string& message) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    error(message);
+  };
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) error("cannot create " + temporary.string() + ": " + std::strerror(errno));
+    file.write(out);
+    out.close();  // closing flushes, and a full disk may only show up here
+    if (!out) give_up("cannot write " + temporary.string() + ": " + std::strerror(errno));
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, target, ec);
+  if (ec)
+    give_up("cannot rename " + temporary.string() + " to " + target.string() + ": " + ec.message());
+}
+
+void write_output(const std::optional<std::string>& output, const SceneFile& file) {
+  if (!output) return write_to_standard_output(file);
+  std::filesystem::path target = *output;
+  std::error_code ec;
+  const auto status = std::filesystem::status(target, ec);  // follows symbolic links
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    return write_in_place(target, file);
+  // Renaming onto a symbolic link would replace the link; write to the file it names.
+  if (std::filesystem::is_symlink(std::filesystem::symlink_status(target, ec)))
+    target = std::filesystem::weakly_canonical(target, ec);
+  write_atomically(target, file);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   const Options options = parse_arguments(argc, argv);
-  glint::RandomSceneResult result;
-  try {
-    result = glint::generate_random_scene(options.parameters);
-  } catch (const std::invalid_argument& e) {
-    // The library's messages start with "random scene: "; the program name says as much.
-    std::string message = e.what();
-    constexpr std::string_view prefix = "random scene: ";
-    if (message.starts_with(prefix)) message.erase(0, prefix.size());
-    error(message);
-  } catch (const std::bad_alloc&) {
-    error("out of memory for " + std::to_string(options.parameters.sphere_count) + " spheres");
-  }
-  if (!result.complete())
-    std::cerr << kProgram << ": warning: placed only " << result.placed << " of "
-              << result.requested
-              << " spheres; use a larger --size, a smaller --min-radius, fewer spheres or more "
-                 "--attempts\n";
-
-  const std::string comment = header(options.parameters, result);
-  if (!options.output) {
-    std::cout << comment;
-    glint::write_scene(std::cout, result.scene);
-    std::cout.flush();
-    if (!std::cout) error("cannot write to standard output");
-    return 0;
-  }
-
-  std::filesystem::path target = *options.output;
-  std::error_code ec;
-  const auto status = std::filesystem::status(target, ec);  // follows symbolic links
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
-    // A device or a pipe (/dev/stdout, a FIFO) cannot be replaced by a rename, and must not
-    // be: write into it directly.
-    std::ofstream out(target, std::ios::binary);
-    if (!out) error("cannot open " + target.string() + ": " + std::strerror(errno));
-    out << comment;
-    glint::write_scene(out, result.scene);
-    out.close();
-    if (!out) error("cannot write " + target.string() + ": " + std::strerror(errno));
-    return 0;
-  }
-  // Renaming onto a symbolic link would replace the link; write to the file it names.
-  if (std::filesystem::is_symlink(std::filesystem::symlink_status(target, ec)))
-    target = std::filesystem::weakly_canonical(target, ec);
-
-  // Write beside the target and rename: the rename is atomic, so OUT is either the old file
-  // or the complete new one, never a half-written scene.
-  std::filesystem::path temporary = target;
-  temporary += ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) error("cannot create " + temporary.string() + ": " + std::strerror(errno));
-    out << comment;
-    glint::write_scene(out, result.scene);
-    out.close();  // closing flushes, and a full disk may only show up here
-    if (!out) {
-      const std::string reason = std::strerror(errno);
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      error("cannot write " + temporary.string() + ": " + reason);
-    }
-  }
-  std::filesystem::rename(temporary, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    error("cannot rename " + temporary.string() + " to " + target.string() + ": " + ec.message());
-  }
+  const glint::RandomSceneResult result = generate(options.parameters);
+  warn_if_incomplete(result);
+  write_output(options.output, SceneFile{header(options.parameters, result), result.scene});
   return 0;
 }

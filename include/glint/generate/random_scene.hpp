@@ -20,16 +20,16 @@
 // spheres is a prefix of the scene with more spheres and the same parameters.
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <limits>
-#include <stdexcept>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "glint/error.hpp"
 #include "glint/math/random.hpp"
+#include "glint/scene/image_settings.hpp"
 #include "glint/scene/scene_description.hpp"
 
 namespace glint {
@@ -63,59 +63,93 @@ inline constexpr int kMaxRandomSceneSpheres = 100'000'000;
 inline constexpr int kMaxRandomSceneAttempts = 1'000'000;
 inline constexpr float kMaxRandomSceneDomain = 1e6f;
 
-/// Throws std::invalid_argument naming the first bad parameter.
+/// Values a random material draws uniformly, in steps of 1/1000: colours and indices read
+/// better in the file that way, and three digits are more than the eye can tell apart.
+struct ThousandthsRange {
+  std::uint32_t low, high;  ///< in thousandths, both included
+  double low_value() const { return low / 1000.0; }
+  double high_value() const { return high / 1000.0; }
+};
+/// Each channel of a diffuse sphere's colour: away from black and from pure white.
+inline constexpr ThousandthsRange kRandomColorChannel{100, 900};
+/// The refractive index of a glass sphere.
+inline constexpr ThousandthsRange kRandomIor{1100, 1900};
+
+/// RandomSceneParameters the generator refuses. what() is "random scene: PROBLEM", problem()
+/// the PROBLEM alone, for a program that puts its own name in front.
+class RandomSceneError : public Error {
+ public:
+  explicit RandomSceneError(const std::string& problem)
+      : Error(detail::concat({"random scene: ", problem})), problem_(problem) {}
+  const std::string& problem() const noexcept { return problem_; }
+
+ private:
+  std::string problem_;
+};
+
+namespace detail {
+
+/// The distance kept between any two surfaces, and between a sphere and the walls.
+inline double surface_gap(const RandomSceneParameters& p) {
+  return double(p.gap_fraction) * p.min_radius;
+}
+
+inline double probability_sum(const RandomSceneParameters& p) {
+  return double(p.diffuse_probability) + p.mirror_probability + p.transparent_probability;
+}
+
+}  // namespace detail
+
+/// Throws RandomSceneError naming the first bad parameter.
 inline void validate(const RandomSceneParameters& p) {
-  const auto fail = [](const std::string& what) {
-    throw std::invalid_argument("random scene: " + what);
-  };
-  // Shortest form of the value as a float: what the user typed comes back unchanged, and
-  // unlike std::to_string this ignores the C locale.
-  const auto text = [](double v) {
-    char buffer[32];
-    const auto r = std::to_chars(buffer, buffer + sizeof buffer, static_cast<float>(v));
-    return std::string(buffer, r.ptr);
-  };
+  using detail::concat;
+  // Numbers come back as the shortest text of the float, so what the user typed comes back
+  // unchanged.
+  const auto text = [](double v) { return detail::format_number(static_cast<float>(v)); };
+  const auto fail = [](const std::string& problem) { throw RandomSceneError(problem); };
   if (!(std::isfinite(p.domain_size) && p.domain_size > 0.0f))
-    fail("domain size must be positive and finite, got " + text(p.domain_size));
+    fail(concat({"domain size must be positive and finite, got ", text(p.domain_size)}));
   if (p.domain_size > kMaxRandomSceneDomain)
-    fail("domain size must be at most " + text(kMaxRandomSceneDomain) + ", got " +
-         text(p.domain_size));
+    fail(concat({"domain size must be at most ", text(kMaxRandomSceneDomain), ", got ",
+                 text(p.domain_size)}));
   if (p.sphere_count < 1 || p.sphere_count > kMaxRandomSceneSpheres)
-    fail("sphere count must be between 1 and " + std::to_string(kMaxRandomSceneSpheres) + ", got " +
-         std::to_string(p.sphere_count));
+    fail(concat({"sphere count must be between 1 and ", std::to_string(kMaxRandomSceneSpheres),
+                 ", got ", std::to_string(p.sphere_count)}));
   const std::pair<const char*, float> probabilities[] = {
       {"diffuse", p.diffuse_probability},
       {"mirror", p.mirror_probability},
       {"transparent", p.transparent_probability}};
   for (const auto& [name, value] : probabilities)
     if (!(std::isfinite(value) && value >= 0.0f && value <= 1.0f))
-      fail(std::string(name) + " probability must be in [0, 1], got " + text(value));
-  const double sum =
-      double(p.diffuse_probability) + p.mirror_probability + p.transparent_probability;
+      fail(concat({name, " probability must be in [0, 1], got ", text(value)}));
+  const double sum = detail::probability_sum(p);
   if (std::abs(sum - 1.0) > 1e-6)
-    fail("diffuse, mirror and transparent probabilities must sum to 1, got " + text(sum));
+    fail(concat({"diffuse, mirror and transparent probabilities must sum to 1, got ", text(sum)}));
   if (!(std::isfinite(p.min_radius) && p.min_radius > 0.0f))
-    fail("minimum radius must be positive and finite, got " + text(p.min_radius));
+    fail(concat({"minimum radius must be positive and finite, got ", text(p.min_radius)}));
   if (!(std::isfinite(p.max_radius) && p.max_radius > 0.0f))
-    fail("maximum radius must be positive and finite, got " + text(p.max_radius));
+    fail(concat({"maximum radius must be positive and finite, got ", text(p.max_radius)}));
   if (p.min_radius > p.max_radius)
-    fail("minimum radius " + text(p.min_radius) + " is larger than maximum radius " +
-         text(p.max_radius));
+    fail(concat({"minimum radius ", text(p.min_radius), " is larger than maximum radius ",
+                 text(p.max_radius)}));
   if (!(std::isfinite(p.gap_fraction) && p.gap_fraction > 0.0f && p.gap_fraction <= 1.0f))
-    fail("gap fraction must be in (0, 1], got " + text(p.gap_fraction));
-  const double gap = double(p.gap_fraction) * p.min_radius;
+    fail(concat({"gap fraction must be in (0, 1], got ", text(p.gap_fraction)}));
+  const double gap = detail::surface_gap(p);
   if (2.0 * (double(p.max_radius) + gap) > p.domain_size)
-    fail("maximum radius " + text(p.max_radius) + " is too large for a domain of size " +
-         text(p.domain_size) + " (a sphere and its gap must fit: 2 * (radius + gap) <= size)");
+    fail(concat({"maximum radius ", text(p.max_radius), " is too large for a domain of size ",
+                 text(p.domain_size),
+                 " (a sphere and its gap must fit: 2 * (radius + gap) <= size)"}));
   // Centres are stored as floats, spaced about 6e-8 * s apart near the walls; a gap that is
   // not well above that spacing would be lost to rounding when the scene is written and read.
   if (gap < 1e-6 * p.domain_size)
-    fail("the gap between spheres (" + text(gap) + " = gap fraction * minimum radius) is too " +
-         "small for float positions in a domain of size " + text(p.domain_size) +
-         "; raise the minimum radius or shrink the domain");
+    fail(concat({"the gap between spheres (", text(gap),
+                 " = gap fraction * minimum radius) is too small for float positions in a "
+                 "domain of size ",
+                 text(p.domain_size), "; raise the minimum radius or shrink the domain"}));
   if (p.max_attempts < 1 || p.max_attempts > kMaxRandomSceneAttempts)
-    fail("attempts per sphere must be between 1 and " + std::to_string(kMaxRandomSceneAttempts) +
-         ", got " + std::to_string(p.max_attempts));
+    fail(concat({"attempts per sphere must be between 1 and ",
+                 std::to_string(kMaxRandomSceneAttempts), ", got ",
+                 std::to_string(p.max_attempts)}));
 }
 
 namespace detail {
@@ -242,50 +276,28 @@ inline float float_at_most(double v) {
   return f;
 }
 
-/// A uniform multiple of 1/1000 in [first, first + count) / 1000, from integers only so no
-/// rounding can differ between builds. Colours and indices read better in the file that way,
-/// and three digits are more than the eye can tell apart.
-inline float random_thousandths(Pcg32& rng, std::uint32_t first, std::uint32_t count) {
+/// A uniform value of `range`, from integers only so that no rounding can differ between
+/// builds.
+inline float random_thousandths(Pcg32& rng, ThousandthsRange range) {
+  const std::uint32_t count = range.high - range.low + 1;
   const auto k = static_cast<std::uint32_t>((std::uint64_t{rng.next_u32()} * count) >> 32);
-  return static_cast<float>(double(first + k) / 1000.0);
+  return static_cast<float>(double(range.low + k) / 1000.0);
 }
 
-}  // namespace detail
+/// The random stream of the sphere with the given index.
+inline Pcg32 sphere_stream(std::uint64_t seed, int index) {
+  return Pcg32(hash_values(seed, std::uint64_t(index)), 0x5eedULL);
+}
 
-/// Generates the scene described by `p` (see the top of this file). Throws
-/// std::invalid_argument for bad parameters (see validate). Spheres that cannot reach the
-/// minimum radius after p.max_attempts centres are left out: compare placed with requested.
-inline RandomSceneResult generate_random_scene(const RandomSceneParameters& p) {
-  validate(p);
-  const double size = p.domain_size;
-  const double half = 0.5 * size;
-  const double gap = double(p.gap_fraction) * p.min_radius;
-  const double min_r = p.min_radius, max_r = p.max_radius;
-
-  RandomSceneResult result;
-  result.requested = p.sphere_count;
-  result.gap = gap;
-  SceneDescription& scene = result.scene;
-  scene.source = "<random scene>";
-  scene.image.width = 800;  // the report's settings
-  scene.image.height = 800;
-  scene.image.samples_per_pixel = 1000;
-  scene.image.max_depth = 12;
-  const auto s = static_cast<float>(size);
+/// The camera at z = 1.4 s looking at the domain, and two lights above it.
+inline void add_camera_and_lights(SceneDescription& scene, float s) {
   scene.camera.position = Vec3(0.0f, 0.0f, 1.4f * s);
   scene.camera.look_at = Vec3(0.0f);
   scene.camera.up = Vec3(0.0f, 1.0f, 0.0f);
   scene.camera.fov_degrees = 60.0f;
-  scene.camera.near = 0.0f;
-  scene.antialias_sigma = 0.5f;
-  scene.background = Color(0.0f);
-  scene.medium_ior = 1.0f;
-  // A light of intensity I at distance d gives irradiance I / d^2. With I = 0.6 s^2 and
-  // 0.3 s^2 for the two lights, the domain's centre (about s away) gets a direct irradiance of
-  // about 0.9 and the back wall (about 1.45 s away) about 0.4, whatever the domain size. That
-  // looks low, but the closed room of albedo 0.75 multiplies it by up to 1 / (1 - 0.75) = 4
-  // through interreflection. A preview render has a median radiance of about 0.3; lights
-  // three times as bright (direct irradiance 1 to 3) clipped most of the image to white.
+  // Intensities grow with s^2 so that the irradiance I / d^2 does not depend on the domain's
+  // size: about 0.9 at its centre (about s away) and 0.4 on the back wall (about 1.45 s). The
+  // closed room of albedo 0.75 multiplies that by up to 4 through interreflection.
   const float s2 = s * s;
   const auto light = [&](Vec3 position, float intensity) {
     PointLight l;
@@ -296,10 +308,13 @@ inline RandomSceneResult generate_random_scene(const RandomSceneParameters& p) {
   };
   light(Vec3(-0.25f * s, 0.3f * s, 0.9f * s), 0.6f * s2);
   light(Vec3(0.25f * s, 0.3f * s, 0.9f * s), 0.3f * s2);
+}
 
-  // Walls of radius 1e5 as in the report and smallpt; a larger domain gets proportionally
-  // larger walls so that they stay as flat relative to the room (a wall bulges into the room
-  // by about s^2 / (4 R) at the domain's edges, 0.016 for the report's s = 80).
+/// The six walls of the room, red on the left and green on the right as in the report.
+inline void add_walls(SceneDescription& scene, float s) {
+  // Radius 1e5 as in the report and smallpt; a larger domain gets proportionally larger walls
+  // so that they stay as flat relative to the room (a wall bulges into the room by about
+  // s^2 / (4 R) at the domain's edges).
   const float wall_radius = std::max(1e5f, 1250.0f * s);
   const auto wall = [&](Vec3 center, Color color) {
     SphereDescription w;
@@ -319,120 +334,193 @@ inline RandomSceneResult generate_random_scene(const RandomSceneParameters& p) {
   // 3 * hs is exact in double, so this rounds once whether or not the compiler fuses it.
   const auto behind = static_cast<float>(3.0 * double(hs) - double(wall_radius));
   wall(Vec3(0.0f, 0.0f, behind), white);  // behind the camera, z = 3s/2
-  result.wall_count = static_cast<int>(scene.spheres.size());
-  scene.spheres.reserve(scene.spheres.size() + std::size_t(p.sphere_count));
+}
 
-  // Which sphere can constrain a new one? For a candidate centre c and a placed sphere j at
-  // distance d, a radius r is allowed iff
-  //   r <= |d - r_j| - gap   (disjoint from j when d >= r_j, inside j when d < r_j), or
-  //   r >= d + r_j + gap     (containing j),
-  // i.e. only r in the open interval (|d - r_j| - gap, d + r_j + gap) is forbidden. If
-  // d >= 2 max_r + gap, then d - r_j - gap >= max_r since r_j <= max_r, so the interval lies
-  // above every radius we may choose and j does not matter. With cells at least 2 max_r + gap
-  // wide, every j that matters has its centre in one of the 27 cells around c's cell, and a
-  // sphere can neither contain nor be contained by anything farther away.
-  //
-  // In fact a new sphere never contains an earlier one: an earlier sphere has the maximum
-  // radius, or lies within `gap` of a wall, or of a sphere that a container would then have to
-  // contain too, and so on down to a sphere of maximum radius. Nesting in the output therefore
-  // always puts a later sphere inside an earlier one. The interval keeps the general rule
-  // anyway: it costs nothing and does not rest on that argument.
-  detail::SphereGrid grid(size, 2.0 * max_r + gap, std::size_t(p.sphere_count));
-  struct Wall {
-    double x, y, z, r;
-  };
-  std::vector<Wall> walls;
-  for (const SphereDescription& w : scene.spheres)
-    walls.push_back({w.center.x, w.center.y, w.center.z, w.radius});
+/// Draws a sphere's material: its kind with the parameters' probabilities, then its colour or
+/// refractive index.
+class MaterialDraw {
+ public:
+  explicit MaterialDraw(const RandomSceneParameters& p)
+      : diffuse_below_(p.diffuse_probability / probability_sum(p)),
+        mirror_below_((double(p.diffuse_probability) + p.mirror_probability) / probability_sum(p)) {
+  }
 
-  const double sum =
-      double(p.diffuse_probability) + p.mirror_probability + p.transparent_probability;
-  const double diffuse_below = p.diffuse_probability / sum;
-  const double mirror_below = (double(p.diffuse_probability) + p.mirror_probability) / sum;
-  // Centres come from the part of the domain where a sphere of the minimum radius fits.
-  // Both are made floats so that centre_span * u (u has 24 bits) is exact in double and the
-  // centre is rounded once whether or not the compiler fuses the multiply and the add.
-  const double centre_low = static_cast<float>(-half + min_r + gap);
-  const double centre_span = static_cast<float>(2.0 * (half - min_r - gap));
-
-  std::vector<std::pair<double, double>> forbidden;  // reused: no allocation per attempt
-  for (int index = 0; index < p.sphere_count; ++index) {
-    Pcg32 rng(hash_values(p.seed, std::uint64_t(index)), 0x5eedULL);
-    // The material is drawn before the centre and kept across attempts, so whether a sphere
-    // fits never depends on its material and the placed spheres keep the probabilities.
+  Material operator()(Pcg32& rng) const {
     Material material;
     const double kind = rng.next_float();
-    if (kind < diffuse_below) {
+    if (kind < diffuse_below_) {
       material.diffuse = 1.0f;
-      // A concrete colour: each channel in [0.1, 0.9], away from black and pure white.
-      const float r = detail::random_thousandths(rng, 100, 801);
-      const float g = detail::random_thousandths(rng, 100, 801);
-      const float b = detail::random_thousandths(rng, 100, 801);
+      // One statement per draw: the order of a constructor's arguments is unspecified (GCC
+      // and Clang differ), and the file must not depend on it.
+      const float r = random_thousandths(rng, kRandomColorChannel);
+      const float g = random_thousandths(rng, kRandomColorChannel);
+      const float b = random_thousandths(rng, kRandomColorChannel);
       material.diffuse_color = Color(r, g, b);
-    } else if (kind < mirror_below) {
+    } else if (kind < mirror_below_) {
       material.diffuse = 0.0f;
       material.mirror = 1.0f;
     } else {
       material.diffuse = 0.0f;
       material.transparent = 1.0f;
-      material.ior = detail::random_thousandths(rng, 1100, 801);  // in [1.1, 1.9]
+      material.ior = random_thousandths(rng, kRandomIor);
     }
+    return material;
+  }
 
-    for (int attempt = 0; attempt < p.max_attempts; ++attempt) {
-      ++result.attempts;
-      // One statement per draw: the order of a constructor's arguments is unspecified (GCC and
-      // Clang differ), and the file must not depend on it.
-      const auto x = static_cast<float>(centre_low + centre_span * rng.next_float());
-      const auto y = static_cast<float>(centre_low + centre_span * rng.next_float());
-      const auto z = static_cast<float>(centre_low + centre_span * rng.next_float());
-      const Vec3 c(x, y, z);
-      const double cx = c.x, cy = c.y, cz = c.z;
-      // Everything is computed in double from the float values that will be written, so the
-      // checks hold for the scene as a reader will see it.
-      double upper = max_r;
-      upper = std::min(upper, half - std::abs(cx) - gap);
-      upper = std::min(upper, half - std::abs(cy) - gap);
-      upper = std::min(upper, half - std::abs(cz) - gap);
-      for (const Wall& w : walls)  // the room is inside every wall sphere
-        upper = std::min(upper, w.r - detail::distance(cx - w.x, cy - w.y, cz - w.z) - gap);
-      if (upper < min_r) continue;
+ private:
+  double diffuse_below_;
+  double mirror_below_;
+};
 
-      forbidden.clear();
-      grid.for_each_near(cx, cy, cz, [&](const detail::GridSphere& o) {
-        const double rj = o.r;
-        const double d = detail::distance(cx - o.x, cy - o.y, cz - o.z);
-        const double low = std::abs(d - rj) - gap, high = d + rj + gap;
-        if (low < upper && high > min_r) forbidden.emplace_back(low, high);
-      });
-      // The largest allowed radius: start at the upper bound and drop to the lower end of any
-      // forbidden interval containing it. Each interval can lower it at most once, and the
-      // result is the top of the highest allowed stretch below upper.
-      double r = upper;
-      for (bool lowered = true; lowered && r >= min_r;) {
-        lowered = false;
-        for (const auto& [low, high] : forbidden)
-          if (low < r && r < high) {
-            r = low;
-            lowered = true;
-          }
+/// Places the random spheres one at a time, each as large as the room and the spheres placed
+/// before it allow.
+///
+/// For a candidate centre c and a placed sphere j at distance d, a radius r is allowed iff
+///   r <= |d - r_j| - gap   (disjoint from j when d >= r_j, inside j when d < r_j), or
+///   r >= d + r_j + gap     (containing j),
+/// i.e. only r in the open interval (|d - r_j| - gap, d + r_j + gap) is forbidden. Since
+/// r_j <= max_r, a sphere j with d >= 2 max_r + gap forbids nothing below max_r, so the grid's
+/// cells are that wide and only the 27 cells around c need to be searched.
+class SpherePlacer {
+ public:
+  struct Placed {
+    Vec3 center;
+    float radius;
+  };
+
+  /// `walls` are the room's walls: the room is the inside of every one of them.
+  SpherePlacer(const RandomSceneParameters& p, const std::vector<SphereDescription>& walls)
+      : half_(0.5 * double(p.domain_size)),
+        gap_(surface_gap(p)),
+        min_r_(p.min_radius),
+        max_r_(p.max_radius),
+        centre_low_(static_cast<float>(-half_ + min_r_ + gap_)),
+        centre_span_(static_cast<float>(2.0 * (half_ - min_r_ - gap_))),
+        grid_(p.domain_size, 2.0 * max_r_ + gap_, std::size_t(p.sphere_count)) {
+    for (const SphereDescription& w : walls)
+      walls_.push_back({w.center.x, w.center.y, w.center.z, w.radius});
+  }
+
+  /// Tries up to `max_attempts` centres drawn from `rng` and keeps the first where a sphere of
+  /// at least the minimum radius fits, with the largest radius that fits there. `attempts`
+  /// counts the centres tried.
+  std::optional<Placed> place(Pcg32& rng, int max_attempts, long long& attempts) {
+    for (int attempt = 0; attempt < max_attempts; ++attempt) {
+      ++attempts;
+      const Vec3 c = random_centre(rng);
+      if (const std::optional<float> radius = largest_radius(c)) {
+        grid_.insert(c.x, c.y, c.z, *radius);
+        return Placed{c, *radius};
       }
-      if (r < min_r) continue;
-      const float radius = detail::float_at_most(r);
-      // Rounding down can only break a containment, and only if the allowed stretch is
-      // narrower than a float step; such a centre is simply retried.
-      bool fits = true;
-      for (const auto& [low, high] : forbidden)
-        fits = fits && !(low < radius && radius < high);
-      if (!fits) continue;
+    }
+    return std::nullopt;
+  }
 
+ private:
+  struct Wall {
+    double x, y, z, r;
+  };
+
+  Vec3 random_centre(Pcg32& rng) const {
+    // One statement per draw, as in MaterialDraw.
+    const double low = centre_low_, span = centre_span_;
+    const auto x = static_cast<float>(low + span * rng.next_float());
+    const auto y = static_cast<float>(low + span * rng.next_float());
+    const auto z = static_cast<float>(low + span * rng.next_float());
+    return Vec3(x, y, z);
+  }
+
+  /// The largest radius a sphere centred at c may have, if it is at least the minimum. It is
+  /// computed in double from the float centre that will be written, so that the checks hold
+  /// for the scene as a reader will see it.
+  std::optional<float> largest_radius(const Vec3& c) {
+    const double cx = c.x, cy = c.y, cz = c.z;
+    const double upper = room_bound(cx, cy, cz);
+    if (upper < min_r_) return std::nullopt;
+
+    forbidden_.clear();
+    grid_.for_each_near(cx, cy, cz, [&](const GridSphere& o) {
+      const double rj = o.r;
+      const double d = distance(cx - o.x, cy - o.y, cz - o.z);
+      const double low = std::abs(d - rj) - gap_, high = d + rj + gap_;
+      if (low < upper && high > min_r_) forbidden_.emplace_back(low, high);
+    });
+    // Start at the upper bound and drop to the lower end of any forbidden interval containing
+    // it. Each interval can lower it at most once, and the result is the top of the highest
+    // allowed stretch below upper.
+    double r = upper;
+    for (bool lowered = true; lowered && r >= min_r_;) {
+      lowered = false;
+      for (const auto& [low, high] : forbidden_)
+        if (low < r && r < high) {
+          r = low;
+          lowered = true;
+        }
+    }
+    if (r < min_r_) return std::nullopt;
+    // Rounding down can only break a containment, and only if the allowed stretch is narrower
+    // than a float step; such a centre is simply given up.
+    const float radius = float_at_most(r);
+    for (const auto& [low, high] : forbidden_)
+      if (low < radius && radius < high) return std::nullopt;
+    return radius;
+  }
+
+  /// The largest radius the domain's cube and the walls allow at (cx, cy, cz).
+  double room_bound(double cx, double cy, double cz) const {
+    double upper = max_r_;
+    upper = std::min(upper, half_ - std::abs(cx) - gap_);
+    upper = std::min(upper, half_ - std::abs(cy) - gap_);
+    upper = std::min(upper, half_ - std::abs(cz) - gap_);
+    for (const Wall& w : walls_)
+      upper = std::min(upper, w.r - distance(cx - w.x, cy - w.y, cz - w.z) - gap_);
+    return upper;
+  }
+
+  double half_, gap_, min_r_, max_r_;
+  // Centres come from the part of the domain where a sphere of the minimum radius fits. The
+  // bounds are floats so that span * u (u has 24 bits) is exact in double and a centre is
+  // rounded once whether or not the compiler fuses the multiply and the add. They are stored
+  // as floats, not as doubles holding float values: GCC 12.2 at -O2 and above miscompiles the
+  // two double-to-float-to-double conversions once it has vectorised them, dropping the
+  // rounding.
+  float centre_low_, centre_span_;
+  std::vector<Wall> walls_;
+  SphereGrid grid_;
+  std::vector<std::pair<double, double>> forbidden_;  // reused: no allocation per attempt
+};
+
+}  // namespace detail
+
+/// Generates the scene described by `p` (see the top of this file). Throws RandomSceneError
+/// for bad parameters (see validate). Spheres that cannot reach the minimum radius after
+/// p.max_attempts centres are left out: compare placed with requested.
+inline RandomSceneResult generate_random_scene(const RandomSceneParameters& p) {
+  validate(p);
+  RandomSceneResult result;
+  result.requested = p.sphere_count;
+  result.gap = detail::surface_gap(p);
+  SceneDescription& scene = result.scene;
+  scene.source = "<random scene>";
+  detail::add_camera_and_lights(scene, p.domain_size);
+  detail::add_walls(scene, p.domain_size);
+  result.wall_count = static_cast<int>(scene.spheres.size());
+  scene.spheres.reserve(scene.spheres.size() + std::size_t(p.sphere_count));
+
+  const detail::MaterialDraw draw_material(p);
+  detail::SpherePlacer placer(p, scene.spheres);
+  for (int index = 0; index < p.sphere_count; ++index) {
+    Pcg32 rng = detail::sphere_stream(p.seed, index);
+    // The material is drawn before the centre and kept across attempts, so whether a sphere
+    // fits never depends on its material and the placed spheres keep the probabilities.
+    const Material material = draw_material(rng);
+    if (const auto placed = placer.place(rng, p.max_attempts, result.attempts)) {
       SphereDescription sphere;
-      sphere.center = c;
-      sphere.radius = radius;
+      sphere.center = placed->center;
+      sphere.radius = placed->radius;
       sphere.material = material;
       scene.spheres.push_back(sphere);
-      grid.insert(c.x, c.y, c.z, radius);
       ++result.placed;
-      break;
     }
   }
   return result;
