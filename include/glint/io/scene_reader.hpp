@@ -1,6 +1,6 @@
 #pragma once
 // The scene file reader: text in, validated SceneDescription out. The format is specified in
-// docs/scene-format.md; in short, one statement per line, `#` starts a comment, `key=value`
+// the README ("The scene format"); in short, one statement per line, `#` starts a comment, `key=value`
 // tokens, vectors `x,y,z`:
 //
 //   image  width=800 height=600 spp=64
