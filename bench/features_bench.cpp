@@ -15,6 +15,7 @@
 #include "glint/generate/random_scene.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_sphere.hpp"
+#include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/policy/antialiasing.hpp"
@@ -133,7 +134,7 @@ void BM_SphereSetScalar(benchmark::State& state) {
 }
 BENCHMARK(BM_SphereSetScalar)->Arg(8)->Arg(32)->Arg(256);
 
-#ifdef GLINT_SPHERE_SET_AVX2
+#ifdef GLINT_AVX2
 void BM_SphereSetAvx2(benchmark::State& state) {
   const SphereSetInputs in(static_cast<std::size_t>(state.range(0)));
   std::size_t i = 0;
