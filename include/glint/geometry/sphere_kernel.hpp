@@ -6,6 +6,7 @@
 // the same formulas with the same tie rule, but its own order of fused operations, so it agrees
 // with the scalar form up to rounding, not bit for bit.
 
+#include <bit>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
@@ -150,10 +151,10 @@ inline bool test_8_spheres(const RayLanes& ray, const SphereColumns& spheres, st
   if (!first_roots(ray, spheres, base, t, has_roots)) return false;
   const HitLanes candidate(t,
                            _mm256_load_si256(reinterpret_cast<const __m256i*>(spheres.id + base)));
-  const __m256 not_origin_sphere = _mm256_castsi256_ps(_mm256_xor_si256(
-      _mm256_cmpeq_epi32(candidate.sphere, ray.origin_sphere), _mm256_set1_epi32(-1)));
+  const __m256 is_origin_sphere =
+      _mm256_castsi256_ps(_mm256_cmpeq_epi32(candidate.sphere, ray.origin_sphere));
   const __m256 wins = _mm256_and_ps(
-      _mm256_and_ps(has_roots, not_origin_sphere),
+      _mm256_andnot_ps(is_origin_sphere, has_roots),
       _mm256_and_ps(_mm256_cmp_ps(t, ray.t_min, _CMP_GT_OQ), comes_before(candidate, best)));
   if (_mm256_movemask_ps(wins) == 0) return false;
   best.t = _mm256_blendv_ps(best.t, candidate.t, wins);
@@ -172,7 +173,7 @@ inline SphereHit first_in_hit_order(const HitLanes& lanes) {
   SphereHit first{_mm256_cvtss_f32(smallest), kNoSphere};
   const int at_smallest = _mm256_movemask_ps(_mm256_cmp_ps(lanes.t, smallest, _CMP_EQ_OQ));
   for (int mask = at_smallest; mask != 0; mask &= mask - 1) {
-    const std::uint32_t id = ids[__builtin_ctz(static_cast<unsigned>(mask))];
+    const std::uint32_t id = ids[std::countr_zero(static_cast<unsigned>(mask))];
     if (id < first.sphere) first.sphere = id;
   }
   return first;
