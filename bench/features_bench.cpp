@@ -15,6 +15,7 @@
 #include "glint/generate/random_scene.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_sphere.hpp"
+#include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/policy/antialiasing.hpp"
@@ -133,7 +134,7 @@ void BM_SphereSetScalar(benchmark::State& state) {
 }
 BENCHMARK(BM_SphereSetScalar)->Arg(8)->Arg(32)->Arg(256);
 
-#ifdef GLINT_SPHERE_SET_AVX2
+#ifdef GLINT_AVX2
 void BM_SphereSetAvx2(benchmark::State& state) {
   const SphereSetInputs in(static_cast<std::size_t>(state.range(0)));
   std::size_t i = 0;
@@ -345,36 +346,65 @@ BENCHMARK(BM_InclusionTreeBuild)
     ->Unit(benchmark::kMicrosecond);
 
 // ---------------------------------------------------------------------------------------------
-// Whole-scene closest hit: the SIMD set alone (up to 64 spheres) or the BVH (more)
+// Whole-scene queries: the SIMD set alone (up to 64 spheres) or the BVH (more)
 
 /// A random scene of the generator (walls included) whose cube grows with the sphere count so
 /// that the density, and so the free path of a ray, stays that of 40 spheres of radius 1 to 4
 /// in a cube of side 80; rays start at random points of the cube in random directions.
-void BM_SceneClosestHit(benchmark::State& state) {
-  const auto count = static_cast<int>(state.range(0));
-  glint::RandomSceneParameters parameters;
-  parameters.sphere_count = count;
-  parameters.domain_size = 80.0f * std::cbrt(float(count) / 40.0f);
-  parameters.min_radius = 1.0f;
-  parameters.max_radius = 4.0f;
-  parameters.seed = 7;
-  const glint::Scene scene = glint::Scene::build(glint::generate_random_scene(parameters).scene);
+struct SceneInputs {
+  glint::Scene scene;
+  std::vector<glint::Ray> rays;
 
-  glint::Pcg32 rng(3, 3);
-  std::vector<glint::Ray> rays(kInputs);
-  const float half = 0.5f * parameters.domain_size;
-  for (glint::Ray& ray : rays) {
-    ray.origin =
-        Vec3(uniform(rng, -half, half), uniform(rng, -half, half), uniform(rng, -half, half));
-    ray.direction = random_unit_vector(rng);
+  explicit SceneInputs(int count) : scene(build(count)), rays(kInputs) {
+    glint::Pcg32 rng(3, 3);
+    const float half = 0.5f * domain_size(count);
+    for (glint::Ray& ray : rays) {
+      ray.origin =
+          Vec3(uniform(rng, -half, half), uniform(rng, -half, half), uniform(rng, -half, half));
+      ray.direction = random_unit_vector(rng);
+    }
   }
+
+  static float domain_size(int count) { return 80.0f * std::cbrt(float(count) / 40.0f); }
+
+  static glint::Scene build(int count) {
+    glint::RandomSceneParameters parameters;
+    parameters.sphere_count = count;
+    parameters.domain_size = domain_size(count);
+    parameters.min_radius = 1.0f;
+    parameters.max_radius = 4.0f;
+    parameters.seed = 7;
+    return glint::Scene::build(glint::generate_random_scene(parameters).scene);
+  }
+};
+
+void BM_SceneClosestHit(benchmark::State& state) {
+  const SceneInputs in(static_cast<int>(state.range(0)));
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(scene.closest_hit(rays[i++ & kMask]));
+    benchmark::DoNotOptimize(in.scene.closest_hit(in.rays[i++ & kMask]));
   }
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_SceneClosestHit)->ArgName("spheres")->Arg(40)->Arg(1000)->Arg(100000)->Arg(1000000);
+
+/// Shadow rays: the same rays cut to the length of a typical light distance (a quarter of the
+/// cube), of which a third to three quarters are blocked.
+void BM_SceneOccluded(benchmark::State& state) {
+  SceneInputs in(static_cast<int>(state.range(0)));
+  const float length = 0.25f * SceneInputs::domain_size(static_cast<int>(state.range(0)));
+  for (glint::Ray& ray : in.rays)
+    ray.t_max = length;
+  std::size_t i = 0, blocked = 0;
+  for (auto _ : state) {
+    const bool occluded = in.scene.occluded(in.rays[i++ & kMask]);
+    benchmark::DoNotOptimize(occluded);
+    blocked += occluded;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["blocked"] = double(blocked) / double(i);
+}
+BENCHMARK(BM_SceneOccluded)->ArgName("spheres")->Arg(40)->Arg(1000)->Arg(100000);
 
 }  // namespace
 

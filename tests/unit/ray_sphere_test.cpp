@@ -13,6 +13,7 @@
 
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_sphere.hpp"
+#include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_bvh.hpp"
 #include "glint/geometry/sphere_set.hpp"
 #include "glint/math/random.hpp"
@@ -346,7 +347,7 @@ bool acceptable_any(const Reference& ref, bool blocked) {
   return !ref.candidates.empty();  // only marginal candidates: either answer is fine
 }
 
-float tolerance_for(const Reference& ref, std::uint32_t sphere) {
+[[maybe_unused]] float tolerance_for(const Reference& ref, std::uint32_t sphere) {
   float tolerance = 0.0f;
   for (const Candidate& c : ref.candidates)
     if (c.sphere == sphere) tolerance = std::max(tolerance, c.tolerance);
@@ -604,7 +605,7 @@ TEST_CASE("SphereSet, SphereBvh and Scene match a brute-force loop over intersec
 }
 
 TEST_CASE("SphereSet: the SIMD kernel agrees with the scalar kernel", "[geometry][sphere_set]") {
-#ifdef GLINT_SPHERE_SET_AVX2
+#ifdef GLINT_AVX2
   glint::Pcg32 rng(99, 6);
   int compared = 0, agreed = 0;
   for (const int count : set_sizes()) {
@@ -614,26 +615,21 @@ TEST_CASE("SphereSet: the SIMD kernel agrees with the scalar kernel", "[geometry
       for (int r = 0; r < 50; ++r) {
         const glint::Ray ray = random_ray(rng, spheres);
         const Reference ref = brute_force(spheres, ray, /*apply_origin_rule=*/false);
-        for (const bool stop_at_first : {false, true}) {
-          glint::SphereHit scalar_hit, simd_hit;
-          const bool scalar = set.closest_hit_scalar(ray, scalar_hit, stop_at_first);
-          const bool simd = set.closest_hit_avx2(ray, simd_hit, stop_at_first);
-          INFO(count << " spheres; " << describe(ray, ref) << "; scalar " << scalar << " "
-                     << int(scalar_hit.sphere) << " t=" << scalar_hit.t << ", simd " << simd << " "
-                     << int(simd_hit.sphere) << " t=" << simd_hit.t);
-          if (stop_at_first) {
-            CHECK(acceptable_any(ref, simd));
-            CHECK(acceptable_any(ref, scalar));
-            continue;
-          }
-          CHECK(acceptable(ref, scalar, scalar_hit));
-          CHECK(acceptable(ref, simd, simd_hit));
-          ++compared;
-          if (scalar != simd || scalar_hit.sphere != simd_hit.sphere) continue;
-          ++agreed;
-          if (scalar)
-            CHECK(std::abs(simd_hit.t - scalar_hit.t) <= tolerance_for(ref, scalar_hit.sphere));
-        }
+        glint::SphereHit scalar_hit, simd_hit;
+        const bool scalar = set.closest_hit_scalar(ray, scalar_hit);
+        const bool simd = set.closest_hit_avx2(ray, simd_hit);
+        INFO(count << " spheres; " << describe(ray, ref) << "; scalar " << scalar << " "
+                   << int(scalar_hit.sphere) << " t=" << scalar_hit.t << ", simd " << simd << " "
+                   << int(simd_hit.sphere) << " t=" << simd_hit.t);
+        CHECK(acceptable_any(ref, set.any_hit_scalar(ray)));
+        CHECK(acceptable_any(ref, set.any_hit_avx2(ray)));
+        CHECK(acceptable(ref, scalar, scalar_hit));
+        CHECK(acceptable(ref, simd, simd_hit));
+        ++compared;
+        if (scalar != simd || scalar_hit.sphere != simd_hit.sphere) continue;
+        ++agreed;
+        if (scalar)
+          CHECK(std::abs(simd_hit.t - scalar_hit.t) <= tolerance_for(ref, scalar_hit.sphere));
       }
     }
   }
@@ -658,5 +654,116 @@ TEST_CASE("SphereSet: padding lanes are never hit", "[geometry][sphere_set]") {
     glint::SphereHit hit;
     CHECK_FALSE(set.closest_hit(ray, hit));
     CHECK_FALSE(set.any_hit(ray));
+  }
+}
+
+// ---- One tie rule: nearest t, then the lowest sphere id ------------------------------------
+
+namespace {
+
+/// Spheres off the z axis, which the rays below never meet; ids from `first_id` up.
+std::vector<TestSphere> spheres_off_axis(int count, std::uint32_t first_id) {
+  std::vector<TestSphere> spheres;
+  for (int i = 0; i < count; ++i)
+    spheres.push_back({Vec3(3.0f * float(i), 100.0f, 0.0f), 1.0f, first_id + std::uint32_t(i)});
+  return spheres;
+}
+
+glint::Ray ray_along_z() {
+  glint::Ray ray;
+  ray.origin = Vec3(0.0f);
+  ray.direction = Vec3(0.0f, 0.0f, 1.0f);
+  return ray;
+}
+
+}  // namespace
+
+TEST_CASE("SphereSet and SphereBvh: coincident spheres go to the lowest id",
+          "[geometry][sphere_set][bvh]") {
+  // Coincident copies of one sphere on the ray, scattered over SIMD lanes, groups and leaves,
+  // with ids in no particular order; every structure and kernel must report the lowest.
+  const std::uint32_t copy_ids[] = {700, 41, 9000, 42, 513};
+  for (const int filler : {0, 3, 13, 40, 200}) {
+    std::vector<TestSphere> spheres = spheres_off_axis(filler, 1000);
+    for (std::size_t k = 0; k < std::size(copy_ids); ++k) {
+      const auto at = std::min(spheres.size(), k * std::size_t(filler + 7) / 3);
+      spheres.insert(spheres.begin() + std::ptrdiff_t(at),
+                     TestSphere{Vec3(0.0f, 0.0f, 10.0f), 1.0f, copy_ids[k]});
+    }
+    const glint::SphereSet set = make_set(spheres);
+    const glint::SphereBvh bvh = make_bvh(spheres);
+    const glint::Ray ray = ray_along_z();
+    INFO(spheres.size() << " spheres");
+
+    glint::SphereHit scalar, bvh_hit;
+    REQUIRE(set.closest_hit_scalar(ray, scalar));
+    REQUIRE(bvh.closest_hit(ray, bvh_hit));
+    CHECK(scalar.sphere == 41u);
+    CHECK(scalar.t == 9.0f);
+    CHECK(bvh_hit.sphere == 41u);
+    CHECK(bvh_hit.t == 9.0f);
+#ifdef GLINT_AVX2
+    glint::SphereHit simd;
+    REQUIRE(set.closest_hit_avx2(ray, simd));
+    CHECK(simd.sphere == 41u);
+    CHECK(simd.t == 9.0f);
+#endif
+
+    // A caller's hit at the same t competes by id too: a higher id loses, a lower one wins.
+    for (const std::uint32_t caller_id : {40u, 41u, 43u}) {
+      const glint::SphereHit caller{9.0f, caller_id};
+      const bool replaced = caller_id > 41u;
+      glint::SphereHit in_set = caller, in_bvh = caller;
+      CHECK(set.closest_hit(ray, in_set) == replaced);
+      CHECK(bvh.closest_hit(ray, in_bvh) == replaced);
+      CHECK(in_set.sphere == (replaced ? 41u : caller_id));
+      CHECK(in_bvh.sphere == (replaced ? 41u : caller_id));
+    }
+
+    // t_max is an open bound: a hit exactly there does not count, whatever its id.
+    glint::Ray short_ray = ray;
+    short_ray.t_max = 9.0f;
+    glint::SphereHit none_in_set, none_in_bvh;
+    CHECK_FALSE(set.closest_hit(short_ray, none_in_set));
+    CHECK_FALSE(bvh.closest_hit(short_ray, none_in_bvh));
+    CHECK_FALSE(set.any_hit(short_ray));
+    CHECK_FALSE(bvh.any_hit(short_ray));
+    short_ray.t_max = std::nextafter(9.0f, 10.0f);
+    CHECK(set.any_hit(short_ray));
+    CHECK(bvh.any_hit(short_ray));
+  }
+}
+
+TEST_CASE("Scene: equal distances go to the lowest index, across its accelerators",
+          "[geometry][sphere_set][bvh]") {
+  const glint::Ray ray = ray_along_z();
+  SECTION("coincident spheres in the linear set and in the hierarchy") {
+    for (const int filler : {2, 80}) {  // up to 64 spheres the scene is one SphereSet
+      std::vector<TestSphere> spheres = spheres_off_axis(filler, 0);
+      spheres.insert(spheres.begin() + 1, TestSphere{Vec3(0.0f, 0.0f, 10.0f), 1.0f, 0});
+      spheres.push_back(TestSphere{Vec3(0.0f, 0.0f, 10.0f), 1.0f, 0});
+      const glint::Scene scene = make_scene(spheres);
+      const std::optional<glint::SphereHit> hit = scene.closest_hit(ray);
+      REQUIRE(hit);
+      CHECK(hit->sphere == 1u);
+      CHECK(hit->t == 9.0f);
+    }
+  }
+  SECTION("a wall in the linear set and a sphere in the hierarchy, met at the same t") {
+    // Both meet the ray at exactly t = 9 (every step is exact in float): the small sphere of
+    // radius 1 at z = 10, and a sphere of radius 1024 at z = 1033, which the scene keeps out
+    // of its hierarchy (more than 100 times the median radius).
+    const TestSphere wall{Vec3(0.0f, 0.0f, 1033.0f), 1024.0f, 0};
+    const TestSphere small{Vec3(0.0f, 0.0f, 10.0f), 1.0f, 0};
+    for (const bool wall_first : {true, false}) {
+      std::vector<TestSphere> spheres = {wall_first ? wall : small, wall_first ? small : wall};
+      for (const TestSphere& s : spheres_off_axis(80, 0))
+        spheres.push_back(s);
+      const glint::Scene scene = make_scene(spheres);
+      const std::optional<glint::SphereHit> hit = scene.closest_hit(ray);
+      REQUIRE(hit);
+      CHECK(hit->sphere == 0u);
+      CHECK(hit->t == 9.0f);
+    }
   }
 }

@@ -25,7 +25,8 @@ struct Reference {
       glint::SphereRoots roots;
       if (!glint::intersect_sphere(ray.origin, ray.direction, s.center, s.radius, roots)) continue;
       const float t = roots.near > ray.t_min ? roots.near : roots.far;
-      if (t > ray.t_min && (t < best.t || (t == best.t && s.id < best.sphere))) {
+      // Nearest first, the lowest id at equal t; t_max itself is excluded.
+      if (t > ray.t_min && t < ray.t_max && (t < best.t || (t == best.t && s.id < best.sphere))) {
         best.t = t;
         best.sphere = s.id;
       }

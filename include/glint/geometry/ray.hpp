@@ -13,7 +13,7 @@ inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
 /// A ray with a unit direction. A ray that starts on a sphere's surface remembers that sphere
 /// and whether it heads into it: leaving outwards it cannot meet that (convex) sphere again,
 /// heading inwards it meets only the far side. This replaces the usual self-intersection
-/// epsilon with an exact rule (see Scene::intersect).
+/// epsilon with an exact rule (see Scene::closest_hit).
 struct Ray {
   Vec3 origin{0.0f};
   Vec3 direction{0.0f, 0.0f, 1.0f};

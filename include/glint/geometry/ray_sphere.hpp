@@ -17,23 +17,29 @@ struct SphereRoots {
   float far;
 };
 
-/// Both ray parameters where the ray meets the sphere, near <= far; false if it misses.
-/// `direction` must be unit length.
-inline bool intersect_sphere(const Vec3& origin, const Vec3& direction, const Vec3& center,
-                             float radius, SphereRoots& roots) {
+/// Both ray parameters where the ray meets the sphere of squared radius `radius_squared`,
+/// near <= far; false if it misses. `direction` must be unit length.
+inline bool intersect_sphere_squared_radius(const Vec3& origin, const Vec3& direction,
+                                            const Vec3& center, float radius_squared,
+                                            SphereRoots& roots) {
   const Vec3 f = origin - center;
   const float b = glm::dot(f, direction);
   const Vec3 perpendicular = f - b * direction;
-  const float radius2 = radius * radius;
-  const float discriminant = radius2 - glm::dot(perpendicular, perpendicular);
+  const float discriminant = radius_squared - glm::dot(perpendicular, perpendicular);
   if (!(discriminant >= 0.0f)) return false;
-  const float c = glm::dot(f, f) - radius2;
+  const float c = glm::dot(f, f) - radius_squared;
   const float q = -(b + std::copysign(std::sqrt(discriminant), b));
   const float t0 = c / q;
   const float t1 = q;
   roots.near = min_of(t0, t1);
   roots.far = max_of(t0, t1);
   return true;
+}
+
+/// The same for a sphere given by its radius.
+inline bool intersect_sphere(const Vec3& origin, const Vec3& direction, const Vec3& center,
+                             float radius, SphereRoots& roots) {
+  return intersect_sphere_squared_radius(origin, direction, center, radius * radius, roots);
 }
 
 /// Where a ray that starts on the sphere's surface and heads inwards leaves it again. Exact for

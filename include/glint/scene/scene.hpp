@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "glint/geometry/ray.hpp"
+#include "glint/geometry/ray_sphere.hpp"
 #include "glint/geometry/sphere_bvh.hpp"
 #include "glint/geometry/sphere_set.hpp"
 #include "glint/scene/inclusion_tree.hpp"
@@ -72,12 +73,13 @@ class Scene {
     return scene;
   }
 
-  /// The nearest sphere along the ray in (t_min, t_max), if any.
+  /// The nearest sphere along the ray in (t_min, t_max), if any; of spheres at exactly the
+  /// same distance, the one of lowest index.
   std::optional<SphereHit> closest_hit(const Ray& ray) const {
     SphereHit hit;
     hit.t = ray.t_max;
     bool found = origin_sphere_hit(ray, hit);
-    if (linear_.size() > 0) found = linear_.closest_hit(ray, hit) || found;
+    if (!linear_.empty()) found = linear_.closest_hit(ray, hit) || found;
     if (!hierarchy_.empty()) found = hierarchy_.closest_hit(ray, hit) || found;
     if (!found) return std::nullopt;
     return hit;
@@ -87,7 +89,7 @@ class Scene {
   bool occluded(const Ray& ray) const {
     SphereHit hit;
     hit.t = ray.t_max;
-    return origin_sphere_hit(ray, hit) || (linear_.size() > 0 && linear_.any_hit(ray)) ||
+    return origin_sphere_hit(ray, hit) || (!linear_.empty() && linear_.any_hit(ray)) ||
            (!hierarchy_.empty() && hierarchy_.any_hit(ray));
   }
 

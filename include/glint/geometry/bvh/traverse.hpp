@@ -1,0 +1,135 @@
+#pragma once
+// Closest-hit and any-hit traversal of the 4-wide tree. It knows boxes only: the spheres of a
+// leaf are tested by the caller's leaf function. Leaves are tested nearest first as soon as
+// their node is reached, so that their hits prune the inner children; inner children are
+// visited nearest first, and a subtree whose box starts beyond the best hit is skipped.
+
+#include <array>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "glint/geometry/accelerator.hpp"
+#include "glint/geometry/bvh/build.hpp"
+#include "glint/geometry/bvh/wide.hpp"
+#include "glint/geometry/ray.hpp"
+#include "glint/geometry/simd.hpp"
+
+namespace glint::bvh {
+
+/// Tests spheres [first, first + count) of the tree's leaf spheres against the ray, updating
+/// `best` (see test_spheres); returns whether it did.
+template <class F>
+concept LeafTest = requires(F& test_leaf, std::uint32_t first, std::uint32_t count,
+                            SphereHit& best) {
+  { test_leaf(first, count, best) } -> std::same_as<bool>;
+};
+
+/// Entry distances into a wide node's four boxes; +infinity where the ray misses the box
+/// within [t_min, t_max].
+inline void enter_boxes(const WideNode& node, const Vec3& origin, const Vec3& inverse_direction,
+                        float t_min, float t_max, float (&enter)[4]) {
+#ifdef GLINT_SSE41
+  const __m128 ox = _mm_set1_ps(origin.x), oy = _mm_set1_ps(origin.y), oz = _mm_set1_ps(origin.z);
+  const __m128 ix = _mm_set1_ps(inverse_direction.x), iy = _mm_set1_ps(inverse_direction.y),
+               iz = _mm_set1_ps(inverse_direction.z);
+  const __m128 ax = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_x), ox), ix);
+  const __m128 bx = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_x), ox), ix);
+  const __m128 ay = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_y), oy), iy);
+  const __m128 by = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_y), oy), iy);
+  const __m128 az = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_z), oz), iz);
+  const __m128 bz = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_z), oz), iz);
+  const __m128 near = _mm_max_ps(_mm_max_ps(_mm_min_ps(ax, bx), _mm_min_ps(ay, by)),
+                                 _mm_max_ps(_mm_min_ps(az, bz), _mm_set1_ps(t_min)));
+  const __m128 far = _mm_min_ps(_mm_min_ps(_mm_max_ps(ax, bx), _mm_max_ps(ay, by)),
+                                _mm_min_ps(_mm_max_ps(az, bz), _mm_set1_ps(t_max)));
+  _mm_storeu_ps(enter, _mm_blendv_ps(_mm_set1_ps(kInfinity), near, _mm_cmple_ps(near, far)));
+#else
+  for (int c = 0; c < 4; ++c) {
+    const float ax = (node.lower_x[c] - origin.x) * inverse_direction.x;
+    const float bx = (node.upper_x[c] - origin.x) * inverse_direction.x;
+    const float ay = (node.lower_y[c] - origin.y) * inverse_direction.y;
+    const float by = (node.upper_y[c] - origin.y) * inverse_direction.y;
+    const float az = (node.lower_z[c] - origin.z) * inverse_direction.z;
+    const float bz = (node.upper_z[c] - origin.z) * inverse_direction.z;
+    const float near =
+        max_of(max_of(min_of(ax, bx), min_of(ay, by)), max_of(min_of(az, bz), t_min));
+    const float far = min_of(min_of(max_of(ax, bx), max_of(ay, by)), min_of(max_of(az, bz), t_max));
+    enter[c] = near <= far ? near : kInfinity;
+  }
+#endif
+}
+
+/// The slots of the children the ray enters, nearest first.
+struct ChildOrder {
+  int slot[4];
+  int count = 0;
+};
+
+inline ChildOrder children_nearest_first(const WideNode& node, const float (&enter)[4]) {
+  ChildOrder order;
+  for (int c = 0; c < 4; ++c) {
+    if (enter[c] == kInfinity || node.child[c] == kEmptySlot) continue;
+    int k = order.count++;
+    while (k > 0 && enter[order.slot[k - 1]] > enter[c]) {
+      order.slot[k] = order.slot[k - 1];
+      --k;
+    }
+    order.slot[k] = c;
+  }
+  return order;
+}
+
+/// Traverses `nodes` (see collapse_to_wide), calling `test_leaf` for the leaves the ray may
+/// reach before `best`; returns whether any call found a hit. With kAnyHit it returns at the
+/// first such hit.
+///
+/// Always inlined: left to itself, GCC keeps the traversal out of line in the path tracer,
+/// which changes the code it generates around the call there (which products it fuses into
+/// FMAs), and with it the rendered images in their last bits.
+template <bool kAnyHit, LeafTest TestLeaf>
+[[gnu::always_inline]] inline bool traverse(const std::vector<WideNode>& nodes, const Ray& ray,
+                                            SphereHit& best, TestLeaf&& test_leaf) {
+  if (nodes.empty()) return false;
+  const Vec3 inverse_direction = 1.0f / ray.direction;
+  // A local copy, which the compiler can keep in registers.
+  SphereHit nearest = best;
+  struct Pending {
+    std::uint32_t node;
+    float enter;
+  };
+  // Each level pushes at most three more nodes than it pops, and the depth is bounded.
+  std::array<Pending, 3 * (kMaxDepth + 2)> stack;
+  int top = 0;
+  stack[std::size_t(top++)] = Pending{0, ray.t_min};
+  bool found = false;
+  while (top > 0) {
+    const Pending pending = stack[std::size_t(--top)];
+    if (pending.enter > nearest.t) continue;
+    const WideNode& node = nodes[pending.node];
+    float enter[4];
+    enter_boxes(node, ray.origin, inverse_direction, ray.t_min, nearest.t, enter);
+    const ChildOrder order = children_nearest_first(node, enter);
+    for (int k = 0; k < order.count; ++k) {
+      const int c = order.slot[k];
+      if (node.count[c] == 0 || enter[c] > nearest.t) continue;
+      if (!test_leaf(node.child[c], node.count[c], nearest)) continue;
+      found = true;
+      if constexpr (kAnyHit) {
+        best = nearest;
+        return true;
+      }
+    }
+    // Farthest pushed first, so that the nearest is popped next.
+    for (int k = order.count - 1; k >= 0; --k) {
+      const int c = order.slot[k];
+      if (node.count[c] == 0 && enter[c] <= nearest.t)
+        stack[std::size_t(top++)] = Pending{node.child[c], enter[c]};
+    }
+  }
+  best = nearest;
+  return found;
+}
+
+}  // namespace glint::bvh

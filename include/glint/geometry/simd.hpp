@@ -1,0 +1,23 @@
+#pragma once
+// The one SIMD switch of glint. Kernels test the macros below, never the compiler's own
+// (__AVX2__, __SSE4_1__, ...), so that defining GLINT_NO_SIMD turns every one of them back to
+// its scalar reference:
+//
+//   GLINT_AVX2    8-wide AVX2 + FMA kernels (SphereSet)
+//   GLINT_SSE41   4-wide SSE4.1 kernels (the BVH's box test)
+//
+// Each is defined when the compiler targets that instruction set (e.g. -march=native) and
+// GLINT_NO_SIMD is not defined.
+
+#if !defined(GLINT_NO_SIMD)
+#if defined(__AVX2__) && defined(__FMA__)
+#define GLINT_AVX2 1
+#endif
+#if defined(__SSE4_1__)
+#define GLINT_SSE41 1
+#endif
+#endif
+
+#if defined(GLINT_AVX2) || defined(GLINT_SSE41)
+#include <immintrin.h>
+#endif

@@ -1,0 +1,212 @@
+#pragma once
+// The leaf kernel: one ray against a run of spheres, keeping the first hit in hit order
+// (accelerator.hpp). test_sphere is the reference for one sphere and test_spheres runs it over
+// a run; SphereSet's scalar path and the BVH's leaves both use these. avx2::closest_hit and
+// avx2::any_hit are the 8-wide form of the same test for SphereSet's structure-of-arrays storage:
+// the same formulas with the same tie rule, but its own order of fused operations, so it agrees
+// with the scalar form up to rounding, not bit for bit.
+
+#include <bit>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+
+#include "glint/geometry/accelerator.hpp"
+#include "glint/geometry/ray.hpp"
+#include "glint/geometry/ray_sphere.hpp"
+#include "glint/geometry/simd.hpp"
+
+namespace glint {
+
+/// Spheres addressed by index, as test_spheres reads them.
+template <class S>
+concept IndexedSpheres = requires(const S& s, std::size_t i) {
+  { s.center(i) } -> std::convertible_to<Vec3>;
+  { s.radius_squared(i) } -> std::convertible_to<float>;
+  { s.id(i) } -> std::convertible_to<std::uint32_t>;
+};
+
+/// If the ray meets sphere `id` past ray.t_min at a point that comes before `best`, makes that
+/// point the best and returns true. The ray's origin sphere is skipped (see Ray).
+inline bool test_sphere(const Ray& ray, const Vec3& center, float radius_squared, std::uint32_t id,
+                        SphereHit& best) {
+  if (id == ray.origin_sphere) return false;
+  SphereRoots roots;
+  if (!intersect_sphere_squared_radius(ray.origin, ray.direction, center, radius_squared, roots))
+    return false;
+  const float t = roots.near > ray.t_min ? roots.near : roots.far;
+  const SphereHit candidate{t, id};
+  if (!(t > ray.t_min) || !comes_before(candidate, best)) return false;
+  best = candidate;
+  return true;
+}
+
+/// test_sphere for spheres [begin, end); whether any of them became the best. With
+/// `stop_at_first`, returns at the first such sphere (enough for an occlusion query).
+template <IndexedSpheres Spheres>
+bool test_spheres(const Ray& ray, const Spheres& spheres, std::size_t begin, std::size_t end,
+                  SphereHit& best, bool stop_at_first) {
+  bool found = false;
+  for (std::size_t i = begin; i < end; ++i) {
+    if (!test_sphere(ray, spheres.center(i), spheres.radius_squared(i), spheres.id(i), best))
+      continue;
+    found = true;
+    if (stop_at_first) break;
+  }
+  return found;
+}
+
+#ifdef GLINT_AVX2
+namespace avx2 {
+
+inline constexpr std::size_t kWidth = 8;
+
+/// Spheres in structure-of-arrays form, 32-byte aligned and padded to a multiple of kWidth
+/// with spheres that no ray can hit.
+struct SphereColumns {
+  const float* cx;
+  const float* cy;
+  const float* cz;
+  const float* r2;
+  const std::uint32_t* id;
+  std::size_t size;  ///< without the padding
+};
+
+/// A ray in every lane.
+struct RayLanes {
+  __m256 ox, oy, oz, dx, dy, dz, t_min;
+  __m256i origin_sphere;
+
+  explicit RayLanes(const Ray& ray)
+      : ox(_mm256_set1_ps(ray.origin.x)),
+        oy(_mm256_set1_ps(ray.origin.y)),
+        oz(_mm256_set1_ps(ray.origin.z)),
+        dx(_mm256_set1_ps(ray.direction.x)),
+        dy(_mm256_set1_ps(ray.direction.y)),
+        dz(_mm256_set1_ps(ray.direction.z)),
+        t_min(_mm256_set1_ps(ray.t_min)),
+        origin_sphere(_mm256_set1_epi32(static_cast<int>(ray.origin_sphere))) {}
+};
+
+/// A hit per lane.
+struct HitLanes {
+  __m256 t;
+  __m256i sphere;
+
+  explicit HitLanes(const SphereHit& hit)
+      : t(_mm256_set1_ps(hit.t)), sphere(_mm256_set1_epi32(static_cast<int>(hit.sphere))) {}
+  HitLanes(__m256 t_lanes, __m256i sphere_lanes) : t(t_lanes), sphere(sphere_lanes) {}
+};
+
+/// For the eight spheres at `base`: in each lane the first root past t_min (the near root, or
+/// the far one from inside), and in `has_roots` whether the ray meets the sphere at all.
+/// Returns false, leaving both unset, when no lane can have a root ahead of the ray.
+inline bool first_roots(const RayLanes& ray, const SphereColumns& spheres, std::size_t base,
+                        __m256& t, __m256& has_roots) {
+  const __m256 zero = _mm256_setzero_ps();
+  const __m256 fx = _mm256_sub_ps(ray.ox, _mm256_load_ps(spheres.cx + base));
+  const __m256 fy = _mm256_sub_ps(ray.oy, _mm256_load_ps(spheres.cy + base));
+  const __m256 fz = _mm256_sub_ps(ray.oz, _mm256_load_ps(spheres.cz + base));
+  const __m256 r2 = _mm256_load_ps(spheres.r2 + base);
+  const __m256 b =
+      _mm256_fmadd_ps(fx, ray.dx, _mm256_fmadd_ps(fy, ray.dy, _mm256_mul_ps(fz, ray.dz)));
+  const __m256 px = _mm256_fnmadd_ps(b, ray.dx, fx);
+  const __m256 py = _mm256_fnmadd_ps(b, ray.dy, fy);
+  const __m256 pz = _mm256_fnmadd_ps(b, ray.dz, fz);
+  const __m256 perp2 = _mm256_fmadd_ps(px, px, _mm256_fmadd_ps(py, py, _mm256_mul_ps(pz, pz)));
+  const __m256 discriminant = _mm256_sub_ps(r2, perp2);
+  has_roots = _mm256_cmp_ps(discriminant, zero, _CMP_GE_OQ);
+  const __m256 c =
+      _mm256_sub_ps(_mm256_fmadd_ps(fx, fx, _mm256_fmadd_ps(fy, fy, _mm256_mul_ps(fz, fz))), r2);
+  // The roots sum to -2b and multiply to c: from outside (c > 0) a sphere behind the origin
+  // (b > 0) has no root ahead. Most groups hold only such spheres and misses, and skip the
+  // square root and the division.
+  const __m256 ahead_or_inside =
+      _mm256_or_ps(_mm256_cmp_ps(b, zero, _CMP_LT_OQ), _mm256_cmp_ps(c, zero, _CMP_LE_OQ));
+  if (_mm256_movemask_ps(_mm256_and_ps(has_roots, ahead_or_inside)) == 0) return false;
+  const __m256 sign_mask = _mm256_set1_ps(-0.0f);
+  const __m256 root = _mm256_sqrt_ps(_mm256_max_ps(discriminant, zero));
+  // q = -(b + copysign(root, b)), the roots are q and c / q (see ray_sphere.hpp).
+  const __m256 signed_root = _mm256_or_ps(root, _mm256_and_ps(b, sign_mask));
+  const __m256 q = _mm256_xor_ps(_mm256_add_ps(b, signed_root), sign_mask);
+  const __m256 t0 = _mm256_div_ps(c, q);
+  const __m256 t_near = _mm256_min_ps(t0, q);
+  const __m256 t_far = _mm256_max_ps(t0, q);
+  t = _mm256_blendv_ps(t_far, t_near, _mm256_cmp_ps(t_near, ray.t_min, _CMP_GT_OQ));
+  return true;
+}
+
+/// comes_before, lane by lane (sphere ids compare unsigned, as std::uint32_t do).
+inline __m256 comes_before(const HitLanes& a, const HitLanes& b) {
+  const __m256i b_not_above_a = _mm256_cmpeq_epi32(_mm256_min_epu32(a.sphere, b.sphere), b.sphere);
+  const __m256 tie =
+      _mm256_andnot_ps(_mm256_castsi256_ps(b_not_above_a), _mm256_cmp_ps(a.t, b.t, _CMP_EQ_OQ));
+  return _mm256_or_ps(_mm256_cmp_ps(a.t, b.t, _CMP_LT_OQ), tie);
+}
+
+/// test_sphere for the eight spheres at `base`, each lane keeping its own best.
+inline bool test_8_spheres(const RayLanes& ray, const SphereColumns& spheres, std::size_t base,
+                           HitLanes& best) {
+  __m256 t, has_roots;
+  if (!first_roots(ray, spheres, base, t, has_roots)) return false;
+  const HitLanes candidate(t,
+                           _mm256_load_si256(reinterpret_cast<const __m256i*>(spheres.id + base)));
+  const __m256 is_origin_sphere =
+      _mm256_castsi256_ps(_mm256_cmpeq_epi32(candidate.sphere, ray.origin_sphere));
+  const __m256 wins = _mm256_and_ps(
+      _mm256_andnot_ps(is_origin_sphere, has_roots),
+      _mm256_and_ps(_mm256_cmp_ps(t, ray.t_min, _CMP_GT_OQ), comes_before(candidate, best)));
+  if (_mm256_movemask_ps(wins) == 0) return false;
+  best.t = _mm256_blendv_ps(best.t, candidate.t, wins);
+  best.sphere = _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(best.sphere),
+                                                     _mm256_castsi256_ps(candidate.sphere), wins));
+  return true;
+}
+
+/// The first of the lanes' hits in hit order.
+inline SphereHit first_in_hit_order(const HitLanes& lanes) {
+  __m256 smallest = _mm256_min_ps(lanes.t, _mm256_permute_ps(lanes.t, 0b10110001));
+  smallest = _mm256_min_ps(smallest, _mm256_permute_ps(smallest, 0b01001110));
+  smallest = _mm256_min_ps(smallest, _mm256_permute2f128_ps(smallest, smallest, 1));
+  alignas(32) std::uint32_t ids[kWidth];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(ids), lanes.sphere);
+  SphereHit first{_mm256_cvtss_f32(smallest), kNoSphere};
+  const int at_smallest = _mm256_movemask_ps(_mm256_cmp_ps(lanes.t, smallest, _CMP_EQ_OQ));
+  for (int mask = at_smallest; mask != 0; mask &= mask - 1) {
+    const std::uint32_t id = ids[std::countr_zero(static_cast<unsigned>(mask))];
+    if (id < first.sphere) first.sphere = id;
+  }
+  return first;
+}
+
+/// test_8_spheres over all of `spheres`; with kAnyHit, stops at the first group with a hit.
+template <bool kAnyHit>
+inline bool scan(const Ray& ray, const SphereColumns& spheres, HitLanes& best) {
+  const RayLanes ray_lanes(ray);
+  bool found = false;
+  for (std::size_t base = 0; base < spheres.size; base += kWidth) {
+    if (!test_8_spheres(ray_lanes, spheres, base, best)) continue;
+    found = true;
+    if constexpr (kAnyHit) break;
+  }
+  return found;
+}
+
+/// The 8-wide form of glint::test_spheres over all of `spheres`.
+inline bool closest_hit(const Ray& ray, const SphereColumns& spheres, SphereHit& best) {
+  HitLanes lanes(best);
+  if (!scan<false>(ray, spheres, lanes)) return false;
+  best = first_in_hit_order(lanes);
+  return true;
+}
+
+/// Whether any of `spheres` is hit before `bound`.
+inline bool any_hit(const Ray& ray, const SphereColumns& spheres, const SphereHit& bound) {
+  HitLanes lanes(bound);
+  return scan<true>(ray, spheres, lanes);
+}
+
+}  // namespace avx2
+#endif
+
+}  // namespace glint
