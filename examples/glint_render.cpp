@@ -187,6 +187,8 @@ void check_writable_directory(const std::string& file) {
 
 }  // namespace
 
+// tests/cli/progress_printer_test.cpp includes this file without its main().
+#ifndef GLINT_RENDER_NO_MAIN
 int main(int argc, char** argv) {
   Options options;
   try {
@@ -243,3 +245,4 @@ int main(int argc, char** argv) {
     return 1;
   }
 }
+#endif

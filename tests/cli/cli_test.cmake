@@ -1,4 +1,12 @@
 # End-to-end checks of the glint-render command line: exit codes, messages, outputs.
+
+# glint-render's progress printer on fixed sequences of reports (a Catch2 program that
+# includes examples/glint_render.cpp without its main()).
+add_executable(glint-cli-tests ${CMAKE_CURRENT_LIST_DIR}/progress_printer_test.cpp)
+target_include_directories(glint-cli-tests PRIVATE ${PROJECT_SOURCE_DIR}/examples)
+target_link_libraries(glint-cli-tests PRIVATE glint::glint glint_project_options glint_catch_main)
+catch_discover_tests(glint-cli-tests TEST_PREFIX "cli: " PROPERTIES LABELS cli)
+
 if(NOT TARGET glint-render)
   return()
 endif()
@@ -50,8 +58,26 @@ glint_cli_test(hdr-not-pfm STATUS 2 STDERR "--hdr writes a linear float PFM: the
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.exr OUTPUT out.png)
 glint_cli_test(renders STATUS 0 STDERR "Mrays/s" EXPECT_OUTPUT OUTPUT out.png
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --spp 2)
-glint_cli_test(quiet STATUS 0 STDERR "^$" EXPECT_OUTPUT OUTPUT tiny.png
+glint_cli_test(quiet STATUS 0 STDERR "^$" STDOUT "^$" EXPECT_OUTPUT OUTPUT tiny.png
                ARGS ${glint_cli_scenes}/tiny.scene --quiet --threads 1)
+
+# Progress lines and the summary on stderr, as a log gets them (stderr is a pipe here).
+# 160 x 96 pixels (60 tiles), 3 samples each: 46080 samples, printed with %.3g.
+function(glint_cli_progress_test name program variant)
+  string(REPLACE ";" "|" joined_args "${ARGN}")
+  set(summary "^glint-render \\(${variant}\\): [^ ]*tiny\\.scene -> out\\.png: 160x96, 3 spp, ")
+  string(APPEND summary "depth 2 in [0-9]+\\.[0-9][0-9] s on [12] threads: 4\\.61e\\+04 samples, ")
+  string(APPEND summary "[0-9]+\\.[0-9] Mrays/s$")
+  add_test(NAME "cli: ${name}" COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:${program}>
+           -DSCENE=${glint_cli_scenes}/tiny.scene "-DARGS=${joined_args}" "-DSUMMARY=${summary}"
+           -DSCRATCH=${PROJECT_BINARY_DIR}/cli-test/${name}
+           -P ${CMAKE_CURRENT_LIST_DIR}/check_progress.cmake)
+  set_tests_properties("cli: ${name}" PROPERTIES LABELS cli)
+endfunction()
+glint_cli_progress_test(progress-report glint-render-report report
+                        -o out.png --width 160 --height 96 --spp 3 --max-depth 2 --threads 2)
+glint_cli_progress_test(progress-default-variant glint-render [a-z_]+
+                        -o out.png --width 160 --height 96 --spp 3 --max-depth 2 --threads 1)
 
 # A shading kind the variant's policy lacks is rejected when the scene is loaded; the example
 # program with its own policy renders the same scene.

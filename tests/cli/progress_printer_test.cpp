@@ -1,0 +1,145 @@
+// glint-render's progress output (examples/glint_render.cpp, included here without its
+// main()): format_seconds, and ProgressPrinter fed fixed sequences of progress reports, its
+// stderr redirected to a file (a log: a line per tenth of the work) or to a pseudo-terminal
+// (one line redrawn in place). The expected text is worked out by hand from the reports:
+// ETA = elapsed * (1 - fraction) / fraction, with elapsed times chosen so that every number
+// printed is exact.
+
+// Without main(), most of the program's functions go unused here.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#define GLINT_RENDER_NO_MAIN
+#include "glint_render.cpp"
+#pragma GCC diagnostic pop
+
+#include <catch2/catch.hpp>
+
+#include <fcntl.h>
+#include <pty.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace {
+
+/// Runs `write` with file descriptor 2 (stderr) pointing at `target`, then puts it back.
+template <typename Write>
+void with_stderr_on(int target, Write&& write) {
+  std::fflush(stderr);
+  const int saved = dup(2);
+  REQUIRE(saved >= 0);
+  REQUIRE(dup2(target, 2) == 2);
+  write();
+  std::fflush(stderr);
+  dup2(saved, 2);
+  close(saved);
+}
+
+/// What ProgressPrinter(enabled) prints for `reports` when stderr is a file.
+std::string printed_to_file(bool enabled, const std::vector<glint::RenderProgress>& reports) {
+  std::FILE* file = std::tmpfile();
+  REQUIRE(file != nullptr);
+  with_stderr_on(fileno(file), [&] {
+    ProgressPrinter printer(enabled);
+    for (const glint::RenderProgress& p : reports)
+      printer(p);
+  });
+  std::string text;
+  std::rewind(file);
+  for (int c = std::fgetc(file); c != EOF; c = std::fgetc(file))
+    text += char(c);
+  std::fclose(file);
+  return text;
+}
+
+/// Reports of a render of 16 tiles taking half a second per tile, for the given tile counts.
+std::vector<glint::RenderProgress> sixteenths(const std::vector<int>& done) {
+  std::vector<glint::RenderProgress> reports;
+  for (const int k : done)
+    reports.push_back({std::size_t(k), 16, 0.5 * k});
+  return reports;
+}
+
+}  // namespace
+
+TEST_CASE("format_seconds: tenths under a minute, then minutes, then hours", "[cli][progress]") {
+  CHECK(format_seconds(0.0) == "0.0 s");
+  CHECK(format_seconds(2.5) == "2.5 s");
+  CHECK(format_seconds(59.94) == "59.9 s");
+  CHECK(format_seconds(60.0) == "1m00s");
+  CHECK(format_seconds(61.9) == "1m01s");
+  CHECK(format_seconds(3599.0) == "59m59s");
+  CHECK(format_seconds(3600.0) == "1h00m");
+  CHECK(format_seconds(90061.0) == "25h01m");
+}
+
+TEST_CASE("in a log, progress is a line per tenth of the work, ending at 100%", "[cli][progress]") {
+  SECTION("a report after every tile: one line per tenth, the first of each") {
+    std::vector<int> every;
+    for (int k = 1; k <= 16; ++k)
+      every.push_back(k);
+    CHECK(printed_to_file(true, sixteenths(every)) ==
+          "[  6%] 0.5 s elapsed, ETA 7.5 s   \n"
+          "[ 12%] 1.0 s elapsed, ETA 7.0 s   \n"
+          "[ 25%] 2.0 s elapsed, ETA 6.0 s   \n"
+          "[ 31%] 2.5 s elapsed, ETA 5.5 s   \n"
+          "[ 43%] 3.5 s elapsed, ETA 4.5 s   \n"
+          "[ 50%] 4.0 s elapsed, ETA 4.0 s   \n"
+          "[ 62%] 5.0 s elapsed, ETA 3.0 s   \n"
+          "[ 75%] 6.0 s elapsed, ETA 2.0 s   \n"
+          "[ 81%] 6.5 s elapsed, ETA 1.5 s   \n"
+          "[ 93%] 7.5 s elapsed, ETA 0.5 s   \n"
+          "[100%] 8.0 s elapsed, ETA 0.0 s   \n");
+  }
+  SECTION("reports that skip tiles, as when the caller wakes late") {
+    CHECK(printed_to_file(true, sixteenths({3, 9, 16})) ==
+          "[ 18%] 1.5 s elapsed, ETA 6.5 s   \n"
+          "[ 56%] 4.5 s elapsed, ETA 3.5 s   \n"
+          "[100%] 8.0 s elapsed, ETA 0.0 s   \n");
+  }
+  SECTION("the last report alone") {
+    CHECK(printed_to_file(true, sixteenths({16})) == "[100%] 8.0 s elapsed, ETA 0.0 s   \n");
+  }
+  SECTION("nothing done yet: no estimate") {
+    CHECK(printed_to_file(true, {{0, 16, 0.0}}) == "[  0%] 0.0 s elapsed, ETA --   \n");
+  }
+  SECTION("long renders: minutes and hours") {
+    CHECK(printed_to_file(true, {{1, 4, 30.0}, {2, 4, 75.0}, {3, 4, 5400.0}, {4, 4, 7200.0}}) ==
+          "[ 25%] 30.0 s elapsed, ETA 1m30s   \n"
+          "[ 50%] 1m15s elapsed, ETA 1m15s   \n"
+          "[ 75%] 1h30m elapsed, ETA 30m00s   \n"
+          "[100%] 2h00m elapsed, ETA 0.0 s   \n");
+  }
+  SECTION("--quiet: nothing") {
+    CHECK(printed_to_file(false, sixteenths({1, 2, 8, 16})).empty());
+  }
+}
+
+TEST_CASE("on a terminal, progress is one line redrawn at most every 0.1 s", "[cli][progress]") {
+  int master = -1, slave = -1;
+  REQUIRE(openpty(&master, &slave, nullptr, nullptr, nullptr) == 0);
+  termios raw{};
+  REQUIRE(tcgetattr(slave, &raw) == 0);
+  cfmakeraw(&raw);  // no newline translation: read back exactly what was written
+  REQUIRE(tcsetattr(slave, TCSANOW, &raw) == 0);
+  with_stderr_on(slave, [] {
+    ProgressPrinter printer(true);
+    printer({1, 16, 0.5});   // drawn
+    printer({2, 16, 0.55});  // under 0.1 s later: skipped
+    printer({3, 16, 0.7});   // drawn
+    printer({16, 16, 0.8});  // the end is always drawn, and ends the line
+  });
+  close(slave);
+  std::string text;
+  char buffer[256];
+  for (ssize_t n; (n = read(master, buffer, sizeof buffer)) > 0;)
+    text.append(buffer, std::size_t(n));
+  close(master);
+  CHECK(text ==
+        "\r[  6%] 0.5 s elapsed, ETA 7.5 s   "
+        "\r[ 18%] 0.7 s elapsed, ETA 3.0 s   "
+        "\r[100%] 0.8 s elapsed, ETA 0.0 s   \n");
+}
