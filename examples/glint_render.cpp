@@ -2,8 +2,6 @@
 // compiled (GLINT_VARIANT names a type of glint::variants, e.g. -DGLINT_VARIANT=report). One
 // executable per variant keeps each translation unit to a single instantiation of the renderer.
 
-#include <unistd.h>
-
 #include <cctype>
 #include <charconv>
 #include <cstdio>
@@ -16,6 +14,7 @@
 #include <vector>
 
 #include "glint/glint.hpp"
+#include "progress_printer.hpp"
 
 #ifndef GLINT_VARIANT
 #define GLINT_VARIANT default_variant
@@ -136,48 +135,6 @@ Options parse_options(int argc, char** argv) {
   return options;
 }
 
-std::string format_seconds(double seconds) {
-  char text[32];
-  if (seconds < 60.0)
-    std::snprintf(text, sizeof text, "%.1f s", seconds);
-  else if (seconds < 3600.0)
-    std::snprintf(text, sizeof text, "%dm%02ds", int(seconds) / 60, int(seconds) % 60);
-  else
-    std::snprintf(text, sizeof text, "%dh%02dm", int(seconds) / 3600, int(seconds) / 60 % 60);
-  return text;
-}
-
-/// Progress on stderr: redrawn in place on a terminal, a line every 10% otherwise (logs).
-class ProgressPrinter {
- public:
-  explicit ProgressPrinter(bool enabled) : enabled_(enabled), terminal_(isatty(2) != 0) {}
-
-  void operator()(const glint::RenderProgress& p) {
-    if (!enabled_) return;
-    const double fraction = p.fraction();
-    const bool done = p.tiles_done == p.tiles_total;
-    if (terminal_) {
-      if (!done && p.elapsed_seconds - last_print_ < 0.1) return;
-    } else {
-      if (!done && int(fraction * 10) == last_decile_) return;
-      last_decile_ = int(fraction * 10);
-    }
-    last_print_ = p.elapsed_seconds;
-    std::string eta = "--";
-    if (fraction > 0.0) eta = format_seconds(p.elapsed_seconds * (1.0 - fraction) / fraction);
-    std::fprintf(stderr, "%s[%3d%%] %s elapsed, ETA %s   %s", terminal_ ? "\r" : "",
-                 int(fraction * 100.0), format_seconds(p.elapsed_seconds).c_str(), eta.c_str(),
-                 terminal_ && !done ? "" : "\n");
-    std::fflush(stderr);
-  }
-
- private:
-  bool enabled_;
-  bool terminal_;
-  double last_print_ = -1.0;
-  int last_decile_ = -1;
-};
-
 void check_writable_directory(const std::string& file) {
   const std::filesystem::path parent = std::filesystem::path(file).parent_path();
   if (!parent.empty() && !std::filesystem::is_directory(parent))
@@ -187,8 +144,6 @@ void check_writable_directory(const std::string& file) {
 
 }  // namespace
 
-// tests/cli/progress_printer_test.cpp includes this file without its main().
-#ifndef GLINT_RENDER_NO_MAIN
 int main(int argc, char** argv) {
   Options options;
   try {
@@ -215,8 +170,8 @@ int main(int argc, char** argv) {
     check_writable_directory(output);
     if (options.hdr) check_writable_directory(*options.hdr);
 
-    const glint::RenderResult result =
-        glint::Renderer<Variant>::render(scene, settings, ProgressPrinter(!options.quiet));
+    const glint::RenderResult result = glint::Renderer<Variant>::render(
+        scene, settings, glint::cli::ProgressPrinter(!options.quiet));
     glint::write_png(result.film, output);
     if (options.hdr) glint::write_pfm(result.film, *options.hdr);
 
@@ -245,4 +200,3 @@ int main(int argc, char** argv) {
     return 1;
   }
 }
-#endif

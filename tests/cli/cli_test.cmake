@@ -1,7 +1,7 @@
 # End-to-end checks of the glint-render command line: exit codes, messages, outputs.
 
-# glint-render's progress printer on fixed sequences of reports (a Catch2 program that
-# includes examples/glint_render.cpp without its main()).
+# glint-render's progress printer (examples/progress_printer.hpp) on fixed sequences of
+# reports.
 add_executable(glint-cli-tests ${CMAKE_CURRENT_LIST_DIR}/progress_printer_test.cpp)
 target_include_directories(glint-cli-tests PRIVATE ${PROJECT_SOURCE_DIR}/examples)
 target_link_libraries(glint-cli-tests PRIVATE glint::glint glint_project_options glint_catch_main)

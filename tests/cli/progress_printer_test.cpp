@@ -1,16 +1,10 @@
-// glint-render's progress output (examples/glint_render.cpp, included here without its
-// main()): format_seconds, and ProgressPrinter fed fixed sequences of progress reports, its
-// stderr redirected to a file (a log: a line per tenth of the work) or to a pseudo-terminal
-// (one line redrawn in place). The expected text is worked out by hand from the reports:
-// ETA = elapsed * (1 - fraction) / fraction, with elapsed times chosen so that every number
-// printed is exact.
+// glint-render's progress output (examples/progress_printer.hpp): format_seconds, and
+// ProgressPrinter fed fixed sequences of progress reports, its stderr redirected to a file (a log:
+// a line per tenth of the work) or to a pseudo-terminal (one line redrawn in place). The expected
+// text is worked out by hand from the reports: ETA = elapsed * (1 - fraction) / fraction, with
+// elapsed times chosen so that every number printed is exact.
 
-// Without main(), most of the program's functions go unused here.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#define GLINT_RENDER_NO_MAIN
-#include "glint_render.cpp"
-#pragma GCC diagnostic pop
+#include "progress_printer.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -24,6 +18,9 @@
 #include <vector>
 
 namespace {
+
+using glint::cli::format_seconds;
+using glint::cli::ProgressPrinter;
 
 /// Runs `write` with file descriptor 2 (stderr) pointing at `target`, then puts it back.
 template <typename Write>
