@@ -68,9 +68,7 @@ TEST_CASE("fig1b-mirror: the mirror shows the walls it faces",
     const auto on_mirror = [&](int x, int y) {
       return sphere_seen(model, settings, variant, x, y, false) == mirror;
     };
-    check_agreement(compare_with_model(film, expected_image(model, settings, variant, on_mirror),
-                                       settings.samples_per_pixel, on_mirror),
-                    500);
+    check_matches_model(film, model, settings, variant, 500, on_mirror);
   }
   SECTION("with interreflection, the mirror has the hue of each wall it reflects") {
     const RenderSettings settings = small_settings(d, 128, 16, 4);
@@ -294,9 +292,7 @@ TEST_CASE("fig3b-diffusion-mirror-glass: the mirror and the glass show the room"
       const int s = sphere_seen(model, settings, variant, x, y, false);
       return s == mirror || s == glass;
     };
-    check_agreement(compare_with_model(film, expected_image(model, settings, variant, specular),
-                                       settings.samples_per_pixel, specular),
-                    500);
+    check_matches_model(film, model, settings, variant, 500, specular);
   }
   SECTION("with interreflection, each surface seen in them has its hue") {
     const RenderSettings settings = small_settings(d, 128, 16, 6);

@@ -94,9 +94,7 @@ TEST_CASE("fig4b-antialiasing: the Gaussian pixel filter, edges are soft",
   const SceneModel model(d);
   const VariantModel variant = variant_model(scene.variant);
   REQUIRE(variant.gaussian_filter);
-  check_agreement(compare_with_model(film, expected_image(model, settings, variant),
-                                     settings.samples_per_pixel),
-                  settings.width * settings.height);
+  check_matches_model(film, model, settings, variant, settings.width * settings.height);
 
   const std::vector<Edge> found = edges(model, settings);
   INFO(found.size() << " edge pixels");
@@ -136,9 +134,7 @@ TEST_CASE("fig5a-no-fresnel: the glass is perfectly transparent",
     const auto on_glass = [&](int x, int y) {
       return sphere_seen(model, settings, variant, x, y, false) == glass;
     };
-    check_agreement(compare_with_model(film, expected_image(model, settings, variant, on_glass),
-                                       settings.samples_per_pixel, on_glass),
-                    500);
+    check_matches_model(film, model, settings, variant, 500, on_glass);
   }
 }
 
@@ -209,9 +205,7 @@ void check_nested_refraction(const glint::SceneDescription& d, int depth, int mi
   const VariantModel variant = variant_model("no_fresnel");
   const RenderSettings settings = small_settings(d, 96, 16, depth);
   const Film film = render_with("no_fresnel", d, settings);
-  check_agreement(compare_with_model(film, expected_image(model, settings, variant),
-                                     settings.samples_per_pixel),
-                  min_pixels);
+  check_matches_model(film, model, settings, variant, min_pixels);
 }
 
 }  // namespace

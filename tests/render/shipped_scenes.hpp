@@ -268,6 +268,17 @@ inline void check_agreement(const Agreement& a, int min_known) {
   CHECK(std::fabs(a.z.z) < 5.0);
 }
 
+/// Compares `film` with the model's prediction for the same settings and
+/// variant over the selected pixels (all if none selected), and CHECKs the agreement.
+inline void check_matches_model(const Film& film, const SceneModel& model,
+                                const RenderSettings& settings, const VariantModel& variant,
+                                int min_known,
+                                const std::function<bool(int, int)>& select = nullptr) {
+  check_agreement(compare_with_model(film, expected_image(model, settings, variant, select),
+                                     settings.samples_per_pixel, select),
+                  min_known);
+}
+
 /// The index of the n-th sphere (from 0) of the scene that is not a wall (radius under 1000).
 inline int small_sphere(const SceneDescription& d, int n = 0) {
   for (std::size_t i = 0; i < d.spheres.size(); ++i)
