@@ -44,10 +44,13 @@ concept DiffuseSampling = requires(Vec2 u) {
 };
 
 /// How a path's lobes are followed: the report traces every lobe with non-zero coefficient
-/// (a tree of rays); a stochastic model follows one lobe per bounce.
+/// (a tree of rays); a stochastic model follows one lobe per bounce. The model names the
+/// estimator that does it, a class template over the Config: `M::template estimator<C>`. (The
+/// check forms it for `void` without instantiating it, so estimators leave C unconstrained in
+/// their declaration and check it in their body.)
 template <typename M>
 concept MaterialModel = requires {
-  { M::traces_every_lobe } -> std::convertible_to<bool>;
+  typename M::template estimator<void>;
 };
 
 /// Fresnel reflectance of a dielectric interface, used for fully transparent spheres.
