@@ -44,7 +44,9 @@ class TreeEstimator {
       continuation = context_.roulette_weight(depth, throughput, sampler);
 
     // The lobes in this order, each sampled just before it is traced: the order of the
-    // sampler's requests is part of every image.
+    // sampler's requests is part of every image. The two delta lobes are written out rather
+    // than shared in a helper: `radiance += weight * trace(...)` is fused into a multiply-add
+    // only where it is inlined, so a helper that is not changes images.
     if (material.has_lobe(Lobe::diffuse)) {
       Color incoming = kInvPi * context_.direct_irradiance(interaction, counters);
       if (continuation) {
