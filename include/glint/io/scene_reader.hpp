@@ -1,7 +1,7 @@
 #pragma once
 // The scene file reader: text in, validated SceneDescription out. The format is specified in
-// the README ("The scene format"); in short, one statement per line, `#` starts a comment, `key=value`
-// tokens, vectors `x,y,z`:
+// the README ("The scene format"); in short, one statement per line, `#` starts a comment,
+// `key=value` tokens, vectors `x,y,z`:
 //
 //   image  width=800 height=600 spp=64
 //   light  position=-10,20,40 intensity=4000

@@ -203,14 +203,9 @@ class ReportMaterial {
   /// probability F. The pdf is the probability of the branch taken; tint and factor are left
   /// for the caller.
   ScatterSample sample_transmission(SamplerType& sampler) const {
-    float pdf = 1.0f;  // refraction or total internal reflection: no choice made
-    const Vec3 direction = transmitted_direction(sampler, pdf);
-    return {direction, Color(0.0f), 0.0f, pdf, true, Lobe::transmission};
-  }
-
-  /// The transmission direction; sets `pdf` to the probability of a Fresnel choice if one is
-  /// made.
-  Vec3 transmitted_direction(SamplerType& sampler, float& pdf) const {
+    const auto transmitted = [](const Vec3& direction, float pdf) {
+      return ScatterSample{direction, Color(0.0f), 0.0f, pdf, true, Lobe::transmission};
+    };
     const detail::Interface& at = interaction_.at;
     const SurfaceProperties& surface = *interaction_.surface;
     const float ior_inside = m_.ior;
@@ -218,19 +213,18 @@ class ReportMaterial {
     const float eta_transmitted = at.from_inside ? surface.ior_outside : ior_inside;
     const std::optional<Vec3> refracted =
         detail::refract(incoming_, at, eta_incident / eta_transmitted);
-    if (!refracted) return detail::reflect(incoming_, at);
+    // Refraction or total internal reflection without a Fresnel choice: probability 1.
+    if (!refracted) return transmitted(detail::reflect(incoming_, at), 1.0f);
     if constexpr (C::fresnel::enabled) {
       if (surface.fully_transparent) {
         const float reflectance =
             C::fresnel::reflectance(at.cos_incident, eta_incident, eta_transmitted);
-        if (sampler.next_1d() < reflectance) {
-          pdf = reflectance;
-          return detail::reflect(incoming_, at);
-        }
-        pdf = 1.0f - reflectance;
+        if (sampler.next_1d() < reflectance)
+          return transmitted(detail::reflect(incoming_, at), reflectance);
+        return transmitted(*refracted, 1.0f - reflectance);
       }
     }
-    return *refracted;
+    return transmitted(*refracted, 1.0f);
   }
 
   const SurfaceInteraction& interaction_;
