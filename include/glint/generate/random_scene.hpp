@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "glint/detail/text.hpp"
 #include "glint/error.hpp"
 #include "glint/math/random.hpp"
 #include "glint/scene/image_settings.hpp"

@@ -31,6 +31,7 @@
 #include <utility>
 #include <vector>
 
+#include "glint/detail/text.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/scene/material.hpp"
 #include "glint/scene/scene_description.hpp"

@@ -3,12 +3,10 @@
 // defaults, their limits and the one check of both. A scene file's `image` statement, the
 // random scene generator, RenderSettings and glint-render's options all take them from here.
 
-#include <charconv>
 #include <cstdint>
-#include <initializer_list>
 #include <string>
-#include <string_view>
-#include <system_error>
+
+#include "glint/detail/text.hpp"
 
 namespace glint {
 
@@ -33,31 +31,6 @@ inline constexpr float max_antialias_sigma = 100.0f;  ///< pixels
 inline constexpr int max_threads = 4096;
 inline constexpr int max_tile_size = 1024;
 }  // namespace limits
-
-namespace detail {
-
-/// Joins message pieces. Unlike a chain of `"literal" + std::string(...)`, this does not set
-/// off GCC 12's false -Wrestrict warning (GCC bug 105651) when inlined.
-inline std::string concat(std::initializer_list<std::string_view> parts) {
-  std::size_t size = 0;
-  for (std::string_view part : parts)
-    size += part.size();
-  std::string out;
-  out.reserve(size);
-  for (std::string_view part : parts)
-    out.append(part);
-  return out;
-}
-
-/// Shortest round-trip text of a float; unlike std::to_string it ignores the C locale.
-inline std::string format_number(float value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  if (result.ec != std::errc{}) return "?";
-  return std::string(buffer, result.ptr);
-}
-
-}  // namespace detail
 
 /// An image's size, samples per pixel and depth: what a scene file's `image` statement sets,
 /// and where RenderSettings starts from.

@@ -6,17 +6,13 @@
 // can run each one as soon as its statement is parsed: the first error reported is then the
 // first one in the file, whatever kind it is.
 
-#include <charconv>
 #include <cmath>
-#include <cstdint>
-#include <initializer_list>
 #include <string>
-#include <string_view>
-#include <system_error>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "glint/detail/text.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/scene/material.hpp"
 #include "glint/scene/scene_description.hpp"
