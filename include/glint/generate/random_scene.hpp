@@ -30,7 +30,6 @@
 #include "glint/detail/text.hpp"
 #include "glint/error.hpp"
 #include "glint/math/random.hpp"
-#include "glint/scene/image_settings.hpp"
 #include "glint/scene/scene_description.hpp"
 
 namespace glint {
