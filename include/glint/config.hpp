@@ -10,6 +10,7 @@
 #include "glint/policy/concepts.hpp"
 #include "glint/policy/diffuse_sampling.hpp"
 #include "glint/policy/fresnel.hpp"
+#include "glint/policy/light_sampling.hpp"
 #include "glint/policy/material_model.hpp"
 #include "glint/policy/path_termination.hpp"
 #include "glint/policy/sampler.hpp"
@@ -26,10 +27,13 @@ namespace glint {
 ///   supports and how each colours a point.
 /// - DiffuseSamplingPolicy: how a diffuse bounce direction is drawn (uniform, cosine).
 /// - PathTerminationPolicy: when a path ends (at the maximum depth, or by Russian roulette).
+/// - LightSamplingPolicy: whether diffuse hits also sample emissive spheres, and how that is
+///   weighted against bounces that hit them (multiple importance sampling).
 template <Sampler SamplerPolicy, MaterialModel MaterialModelPolicy, Fresnel FresnelPolicy,
           Antialiasing AntialiasingPolicy, SphereShading SphereShadingPolicy,
           DiffuseSampling DiffuseSamplingPolicy = UniformHemisphere,
-          PathTermination PathTerminationPolicy = FixedDepth>
+          PathTermination PathTerminationPolicy = FixedDepth,
+          LightSampling LightSamplingPolicy = PointLightsOnly>
 struct Config {
   using sampler = SamplerPolicy;
   using material_model = MaterialModelPolicy;
@@ -38,34 +42,39 @@ struct Config {
   using sphere_shading = SphereShadingPolicy;
   using diffuse_sampling = DiffuseSamplingPolicy;
   using path_termination = PathTerminationPolicy;
+  using light_sampling = LightSamplingPolicy;
 
   template <Sampler P>
   using with_sampler = Config<P, material_model, fresnel, antialiasing, sphere_shading,
-                              diffuse_sampling, path_termination>;
+                              diffuse_sampling, path_termination, light_sampling>;
   template <MaterialModel P>
-  using with_material_model =
-      Config<sampler, P, fresnel, antialiasing, sphere_shading, diffuse_sampling, path_termination>;
+  using with_material_model = Config<sampler, P, fresnel, antialiasing, sphere_shading,
+                                     diffuse_sampling, path_termination, light_sampling>;
   template <Fresnel P>
   using with_fresnel = Config<sampler, material_model, P, antialiasing, sphere_shading,
-                              diffuse_sampling, path_termination>;
+                              diffuse_sampling, path_termination, light_sampling>;
   template <Antialiasing P>
   using with_antialiasing = Config<sampler, material_model, fresnel, P, sphere_shading,
-                                   diffuse_sampling, path_termination>;
+                                   diffuse_sampling, path_termination, light_sampling>;
   template <SphereShading P>
-  using with_sphere_shading =
-      Config<sampler, material_model, fresnel, antialiasing, P, diffuse_sampling, path_termination>;
+  using with_sphere_shading = Config<sampler, material_model, fresnel, antialiasing, P,
+                                     diffuse_sampling, path_termination, light_sampling>;
   template <DiffuseSampling P>
-  using with_diffuse_sampling =
-      Config<sampler, material_model, fresnel, antialiasing, sphere_shading, P, path_termination>;
+  using with_diffuse_sampling = Config<sampler, material_model, fresnel, antialiasing,
+                                       sphere_shading, P, path_termination, light_sampling>;
   template <PathTermination P>
-  using with_path_termination =
-      Config<sampler, material_model, fresnel, antialiasing, sphere_shading, diffuse_sampling, P>;
+  using with_path_termination = Config<sampler, material_model, fresnel, antialiasing,
+                                       sphere_shading, diffuse_sampling, P, light_sampling>;
+  template <LightSampling P>
+  using with_light_sampling = Config<sampler, material_model, fresnel, antialiasing, sphere_shading,
+                                     diffuse_sampling, path_termination, P>;
 };
 
 namespace detail {
 // Deduction accepts a class derived from a Config, which is what a named variant is.
-template <typename S, typename M, typename F, typename A, typename H, typename D, typename T>
-std::true_type derives_from_config(const Config<S, M, F, A, H, D, T>*);
+template <typename S, typename M, typename F, typename A, typename H, typename D, typename T,
+          typename L>
+std::true_type derives_from_config(const Config<S, M, F, A, H, D, T, L>*);
 std::false_type derives_from_config(...);
 }  // namespace detail
 

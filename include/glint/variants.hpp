@@ -89,11 +89,16 @@ struct stratified_sampler : report::with_sampler<StratifiedSampler> {
 struct sobol_sampler : report::with_sampler<SobolSampler> {
   static constexpr VariantInfo info{"sobol_sampler", "Owen-scrambled Sobol' samples", kSameImage};
 };
+struct emitter_sampling : report::with_light_sampling<EmitterSampling<PowerHeuristic>> {
+  static constexpr VariantInfo info{
+      "emitter_sampling", "emissive spheres sampled at diffuse hits, MIS with the power heuristic",
+      kSameImage};
+};
 
 /// Every named variant, `report` first: the order of every table.
 using all = std::tuple<report, fast, no_fresnel, schlick_fresnel, no_antialiasing, box_antialiasing,
                        tent_antialiasing, cosine_hemisphere, stochastic_material, russian_roulette,
-                       uniform_shading, stratified_sampler, sobol_sampler>;
+                       uniform_shading, stratified_sampler, sobol_sampler, emitter_sampling>;
 
 /// The variant glint-render (without a suffix) is built with.
 using default_variant = fast;

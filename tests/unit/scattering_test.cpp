@@ -32,8 +32,12 @@ struct TopOfSphere {
   glint::SurfaceInteraction interaction;
 
   TopOfSphere(const Material& material, const Vec3& incoming)
-      : surface{material, Vec3(0.0f), 1.0f, glint::ShadingKind::uniform,
-                material.is_fully_transparent()} {
+      : surface{material,
+                Vec3(0.0f),
+                1.0f,
+                glint::ShadingKind::uniform,
+                material.is_fully_transparent(),
+                glint::kNotAnEmitter} {
     ray.origin = Vec3(0.0f, 0.0f, 1.0f) - incoming;
     ray.direction = incoming;
     const Vec3 normal(0.0f, 0.0f, 1.0f);

@@ -44,6 +44,30 @@ inline Vec3 sample_cosine_hemisphere(Vec2 u) {
   return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::fmax(0.0f, 1.0f - u.x))};
 }
 
+/// Uniform on the unit sphere; pdf 1/(4 pi).
+inline Vec3 sample_uniform_sphere(Vec2 u) {
+  const float z = 1.0f - 2.0f * u.x;
+  const float r = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
+  const float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+/// Uniform over the directions within angle theta_max of +z, the cone being given by
+/// 1 - cos(theta_max) (in (0, 2]) rather than by the cosine, which rounds to 1 for the small
+/// cones that distant lamps subtend. Its pdf is uniform_cone_pdf(one_minus_cos_max).
+inline Vec3 sample_uniform_cone(Vec2 u, float one_minus_cos_max) {
+  const float one_minus_cos = u.x * one_minus_cos_max;
+  const float z = 1.0f - one_minus_cos;
+  const float r = std::sqrt(std::fmax(0.0f, one_minus_cos * (2.0f - one_minus_cos)));
+  const float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+/// 1 / solid angle of the cone: 1 / (2 pi (1 - cos theta_max)).
+inline float uniform_cone_pdf(float one_minus_cos_max) {
+  return 1.0f / (2.0f * kPi * one_minus_cos_max);
+}
+
 /// Two independent standard normal values (Box-Muller). u.x is mapped to (0, 1] so that the
 /// logarithm stays finite.
 inline Vec2 sample_standard_normal_pair(Vec2 u) {

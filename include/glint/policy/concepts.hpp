@@ -85,4 +85,20 @@ concept PathTermination = requires(int depth, float throughput) {
   { T::continue_probability(depth, throughput) } -> std::same_as<float>;
 };
 
+/// A multiple importance sampling heuristic: the weight of a sample made with density `pdf`
+/// when another strategy would have made it with density `other_pdf` (both per solid angle).
+template <typename H>
+concept MisHeuristic = requires(float pdf, float other_pdf) {
+  { H::weight(pdf, other_pdf) } -> std::same_as<float>;
+};
+
+/// How emissive spheres are found: only by bounces, or also by sampling them from diffuse hits,
+/// with the weights that split each direction's light between the two strategies.
+template <typename L>
+concept LightSampling = requires(float pdf, float other_pdf) {
+  { L::samples_emitters } -> std::convertible_to<bool>;
+  { L::light_weight(pdf, other_pdf) } -> std::same_as<float>;   // a light sample's weight
+  { L::bounce_weight(pdf, other_pdf) } -> std::same_as<float>;  // a bounce's, on an emitter
+};
+
 }  // namespace glint

@@ -1,7 +1,7 @@
 #pragma once
 // Path termination policies: when a path stops.
 
-#include <algorithm>
+#include <cmath>
 
 #include "glint/policy/concepts.hpp"
 
@@ -13,15 +13,18 @@ struct FixedDepth {
   static float continue_probability(int, float) { return 1.0f; }
 };
 
-/// Russian roulette after three bounces: a path continues with probability tied to the
-/// throughput it carries and is reweighted by 1/probability, so the estimate stays unbiased.
-/// The maximum depth still caps every path.
+/// Russian roulette after three bounces, as pbrt-v4 plays it: a path whose throughput (the
+/// largest colour component of its weight, including the 1/p of roulettes it survived) is
+/// below one continues with probability equal to that throughput and is reweighted by 1/p, so
+/// the estimate stays unbiased and a surviving path carries throughput one. A path at or
+/// above one is never played: killing a lossless path (glass in a furnace) would only add
+/// noise. The maximum depth still caps every path.
 struct RussianRoulette {
   static constexpr bool uses_roulette = true;
   static constexpr int kMinimumBounces = 3;
   static float continue_probability(int depth, float throughput) {
     if (depth < kMinimumBounces) return 1.0f;
-    return std::clamp(throughput, 0.05f, 0.95f);
+    return std::fmin(throughput, 1.0f);
   }
 };
 

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "glint/geometry/ray_sphere.hpp"
 #include "glint/geometry/sphere_bvh.hpp"
 #include "glint/geometry/sphere_set.hpp"
+#include "glint/scene/emitters.hpp"
 #include "glint/scene/inclusion_tree.hpp"
 #include "glint/scene/scene_description.hpp"
 #include "glint/scene/validate.hpp"
@@ -29,7 +31,10 @@ struct SurfaceProperties {
   float ior_outside;  ///< index of the medium around the sphere, from the inclusion tree
   ShadingKind shading;
   bool fully_transparent;  ///< the report applies Fresnel to these spheres only
+  std::uint32_t emitter;   ///< index in Scene::emitters(), or kNotAnEmitter
 };
+
+inline constexpr std::uint32_t kNotAnEmitter = std::numeric_limits<std::uint32_t>::max();
 
 /// Where a ray meets a sphere, with what shading needs of the geometry there.
 struct SurfaceHit {
@@ -55,6 +60,7 @@ class Scene {
     const InclusionTree tree = build_inclusion_tree(description);
     const float huge_radius = huge_radius_threshold(description);
     std::vector<SphereBvh::Input> hierarchy_spheres;
+    std::vector<SphereEmitter> emitters;
     scene.surfaces_.reserve(description.spheres.size());
     scene.sphere_lines_.reserve(description.spheres.size());
     for (std::size_t i = 0; i < description.spheres.size(); ++i) {
@@ -64,12 +70,18 @@ class Scene {
         scene.linear_.add(sphere.center, sphere.radius, id);
       else
         hierarchy_spheres.push_back({sphere.center, sphere.radius, id});
+      std::uint32_t emitter = kNotAnEmitter;
+      if (sphere.material.is_emissive()) {
+        emitter = static_cast<std::uint32_t>(emitters.size());
+        emitters.push_back({sphere.center, sphere.radius, sphere.material.emission, id});
+      }
       scene.surfaces_.push_back(SurfaceProperties{sphere.material, sphere.center,
                                                   tree.outside_ior[i], sphere.shading,
-                                                  sphere.material.is_fully_transparent()});
+                                                  sphere.material.is_fully_transparent(), emitter});
       scene.sphere_lines_.push_back(sphere.line);
     }
     scene.hierarchy_ = SphereBvh(std::move(hierarchy_spheres));
+    scene.emitters_ = EmitterTable(std::move(emitters));
     return scene;
   }
 
@@ -105,6 +117,8 @@ class Scene {
   /// The line of the scene file that defined a sphere (0 if it did not come from a file).
   int sphere_line(std::uint32_t sphere) const { return sphere_lines_[sphere]; }
   const std::vector<PointLight>& lights() const { return lights_; }
+  /// The emissive spheres, for light sampling.
+  const EmitterTable& emitters() const { return emitters_; }
   const CameraDescription& camera() const { return camera_; }
   Color background() const { return background_; }
   /// The image settings and pixel filter width the scene asks for.
@@ -150,6 +164,7 @@ class Scene {
   float antialias_sigma_ = defaults::antialias_sigma;
   Color background_{0.0f};
   std::vector<PointLight> lights_;
+  EmitterTable emitters_;
   SphereSet linear_;
   SphereBvh hierarchy_;
   std::vector<SurfaceProperties> surfaces_;

@@ -11,8 +11,9 @@ namespace glint {
 
 /// Follows one lobe per bounce, chosen with probability proportional to its coefficient
 /// (ReportMaterial::sample), so a path is a chain with the expectation of the tree at linear
-/// cost. A diffuse hit gathers the point lights directly; emission is picked up wherever a ray
-/// lands; C::path_termination may end a path before the maximum depth. Named by
+/// cost. A diffuse hit gathers the point lights directly (and samples an emissive sphere when
+/// C::light_sampling says so); emission is picked up wherever a ray lands, weighted against
+/// that light sampling; C::path_termination may end a path before the maximum depth. Named by
 /// StochasticMaterialModel.
 template <typename C>
 class ChainEstimator {
@@ -20,6 +21,7 @@ class ChainEstimator {
 
  public:
   using SamplerType = typename C::sampler;
+  static constexpr bool kSamplesEmitters = PathContext<C>::kSamplesEmitters;
 
   explicit ChainEstimator(const PathContext<C>& context) : context_(context) {}
 
@@ -27,6 +29,7 @@ class ChainEstimator {
   Color radiance(Ray ray, SamplerType& sampler, TraceCounters& counters) const {
     Color radiance(0.0f);
     Color throughput(1.0f);
+    [[maybe_unused]] typename PathContext<C>::Origin from{};
     for (int depth = 0;; ++depth) {
       const std::optional<SphereHit> hit = context_.closest_hit(ray, counters);
       if (!hit) {
@@ -34,17 +37,31 @@ class ChainEstimator {
         break;
       }
       const SurfaceInteraction interaction = context_.interaction(ray, *hit);
-      radiance += throughput * interaction.material().emission;
+      if constexpr (kSamplesEmitters)
+        radiance += throughput * (interaction.material().emission *
+                                  context_.emission_weight(ray, *hit, interaction, from));
+      else
+        radiance += throughput * interaction.material().emission;
       const ReportMaterial<C> material(interaction, ray.direction);
-      if (material.has_lobe(Lobe::diffuse))
+      if (material.has_lobe(Lobe::diffuse)) {
         radiance += (throughput * material.albedo()) *
                     (kInvPi * context_.direct_irradiance(interaction, counters));
+        // Only where a bounce may follow, so that both strategies cover the same paths.
+        if constexpr (kSamplesEmitters)
+          if (depth < context_.max_depth())
+            radiance +=
+                throughput * context_.sample_emitter(
+                                 interaction, material,
+                                 [&](const Vec3& direction) { return material.pdf(direction); },
+                                 sampler, counters);
+      }
       if (depth >= context_.max_depth() || !material.scatters()) break;
       const std::optional<float> continuation =
           context_.roulette_weight(depth, max_component(throughput), sampler);
       if (!continuation) break;
 
       const ScatterSample next = material.sample(sampler);
+      if constexpr (kSamplesEmitters) from = PathContext<C>::origin_of(interaction, next);
       ray = PathContext<C>::continue_ray(interaction, next.direction);
       throughput *= next.tint * (next.factor * *continuation);
     }

@@ -1,12 +1,14 @@
 #pragma once
 // What both estimators share: finding the next hit and setting it up for shading, gathering
-// the point lights there, and the path termination policy. Units (see README): a point light
+// the point lights there, sampling the emissive spheres and weighting the emission a bounce
+// finds (C::light_sampling), and the path termination policy. Units (see README): a point light
 // of intensity I (W/sr) at distance d gives irradiance I * colour * cos(theta) / d^2; a diffuse
 // lobe reflects diffuse * colour / pi of its irradiance as radiance.
 
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <type_traits>
 
 #include "glint/config.hpp"
 #include "glint/geometry/ray.hpp"
@@ -21,12 +23,31 @@ struct TraceCounters {
   std::uint64_t invalid_samples = 0;  ///< NaN or infinite samples, dropped
 };
 
+/// Where the ray that reached a hit started, which light sampling needs to weigh the emission
+/// found there: the density light sampling would have had for the same direction depends on
+/// the point it is seen from.
+struct BounceOrigin {
+  Vec3 point{0.0f};
+  std::uint32_t sphere = kNoSphere;
+  bool from_inside = false;  ///< the side of `sphere` the point was shaded on
+  /// Density of the ray's direction per unit solid angle; zero for a camera ray and for a
+  /// delta lobe, whose emission is not shared with light sampling (weight one).
+  float pdf = 0.0f;
+};
+
+/// What the estimators carry instead of a BounceOrigin when C::light_sampling does not sample
+/// emitters: nothing.
+struct NoBounceOrigin {};
+
 /// The scene as an estimator sees it, with the policies of Config C that do not depend on
 /// how lobes are followed. Cheap to copy (a reference and two values).
 template <RenderConfig C>
 class PathContext {
  public:
   using SamplerType = typename C::sampler;
+  static constexpr bool kSamplesEmitters = C::light_sampling::samples_emitters;
+  /// BounceOrigin when emitters are sampled, otherwise the empty NoBounceOrigin.
+  using Origin = std::conditional_t<kSamplesEmitters, BounceOrigin, NoBounceOrigin>;
 
   PathContext(const Scene& scene, int max_depth)
       : scene_(scene), background_(scene.background()), max_depth_(max_depth) {}
@@ -74,6 +95,59 @@ class PathContext {
       irradiance += (light.intensity * cosine / distance2) * light.color;
     }
     return irradiance;
+  }
+
+  /// The origin of a ray leaving `interaction` by a lobe sampled as `sample`.
+  static BounceOrigin origin_of(const SurfaceInteraction& interaction,
+                                const ScatterSample& sample) {
+    if (sample.delta) return {};
+    return {interaction.hit.point, interaction.hit.sphere, interaction.at.from_inside, sample.pdf};
+  }
+
+  /// The MIS weight of the emission at `interaction`, reached by `ray` from `origin`: one for
+  /// a camera ray, a delta lobe or a sphere that does not emit.
+  float emission_weight(const Ray& ray, const SphereHit& hit, const SurfaceInteraction& interaction,
+                        const BounceOrigin& origin) const {
+    const std::uint32_t index = interaction.surface->emitter;
+    if (!(origin.pdf > 0.0f) || index == kNotAnEmitter) return 1.0f;
+    const SphereEmitter& emitter = scene_.emitters()[index];
+    const EmitterView view = emitter.view_from(origin.point, origin.sphere, origin.from_inside);
+    const float light_pdf = scene_.emitters().probability(index) *
+                            emitter.direction_pdf(origin.point, view, ray.direction, hit.t,
+                                                  interaction.hit.outward_normal);
+    return C::light_sampling::bounce_weight(origin.pdf, light_pdf);
+  }
+
+  /// Light from one emissive sphere reaching `interaction` and reflected by `material`'s
+  /// diffuse lobe, with its MIS weight; `bounce_pdf(direction)` is the density with which the
+  /// estimator's own bounce would have chosen that direction. One emitter, chosen by power;
+  /// one next_1d and one next_2d whenever the scene has emitters, none otherwise (so a scene
+  /// without emitters renders exactly as without light sampling).
+  template <typename BouncePdf>
+  Color sample_emitter(const SurfaceInteraction& interaction, const ReportMaterial<C>& material,
+                       BouncePdf&& bounce_pdf, SamplerType& sampler,
+                       TraceCounters& counters) const {
+    const EmitterTable& emitters = scene_.emitters();
+    if (emitters.empty()) return Color(0.0f);
+    const float u_choice = sampler.next_1d();
+    const Vec2 u_direction = sampler.next_2d();
+    const EmitterTable::Choice choice = emitters.choose(u_choice);
+    const SphereEmitter& emitter = emitters[choice.index];
+    const EmitterView view = emitter.view_from(interaction.hit.point, interaction.hit.sphere,
+                                               interaction.at.from_inside);
+    const std::optional<EmitterDirection> sample =
+        emitter.sample_direction(interaction.hit.point, view, u_direction);
+    if (!sample || !(sample->pdf > 0.0f)) return Color(0.0f);
+    const Color reflected = material.evaluate(sample->direction);
+    if (reflected == Color(0.0f)) return Color(0.0f);
+    // Visible if the first sphere along the direction is the emitter itself: a shadow ray
+    // with the emitter's distance as its end would have to beat the rounding of that distance.
+    const std::optional<SphereHit> hit =
+        closest_hit(continue_ray(interaction, sample->direction), counters);
+    if (!hit || hit->sphere != emitter.sphere) return Color(0.0f);
+    const float light_pdf = choice.probability * sample->pdf;
+    const float weight = C::light_sampling::light_weight(light_pdf, bounce_pdf(sample->direction));
+    return reflected * emitter.radiance * (weight / light_pdf);
   }
 
   /// Russian roulette: none if the path ends here, otherwise the weight 1/p that keeps the

@@ -1,0 +1,77 @@
+#pragma once
+// Light sampling policies: how a path finds the light of emissive spheres. Point lights are
+// always gathered directly at diffuse hits (they cannot be hit by a bounce); these policies
+// decide whether emissive spheres are also sampled there (next-event estimation) and, if so,
+// how a light sample and a bounce that lands on the same emitter share the work (multiple
+// importance sampling, Veach 1997, chapter 9).
+//
+// Both weights are functions of two densities per unit solid angle at the shading point: that
+// of the strategy that made the sample, and that of the other strategy for the same direction.
+// For every direction the two weights sum to one, which keeps the estimate unbiased.
+
+#include <cmath>
+
+#include "glint/policy/concepts.hpp"
+
+namespace glint {
+
+/// The report's: emissive spheres are found only when a bounce happens to hit them.
+struct PointLightsOnly {
+  static constexpr bool samples_emitters = false;
+  static float light_weight(float, float) { return 0.0f; }
+  static float bounce_weight(float, float) { return 1.0f; }
+};
+
+/// The balance heuristic: each strategy weighted by its share of the summed densities.
+struct BalanceHeuristic {
+  static float weight(float pdf, float other_pdf) {
+    if (!(pdf > 0.0f)) return 0.0f;
+    if (std::isinf(pdf)) return 1.0f;
+    return pdf / (pdf + other_pdf);
+  }
+};
+
+/// The power heuristic with exponent 2: closer to choosing the better strategy outright, which
+/// Veach shows is rarely worse than the balance heuristic and often much better where one
+/// strategy is poor (a small lamp seen from a diffuse surface).
+struct PowerHeuristic {
+  static float weight(float pdf, float other_pdf) {
+    if (!(pdf > 0.0f)) return 0.0f;
+    const float a = pdf * pdf;
+    if (std::isinf(a)) return 1.0f;
+    return a / (a + other_pdf * other_pdf);
+  }
+};
+
+/// Next-event estimation with multiple importance sampling: at every diffuse hit from which a
+/// bounce may follow, one emissive sphere is chosen and a direction towards it sampled and
+/// tested with a shadow ray; a bounce that lands on an emitter is weighted against the density
+/// with which light sampling would have chosen that direction. Delta lobes (mirror, refraction)
+/// have no density to compare, so light reaching a path through them keeps weight one.
+template <MisHeuristic Heuristic>
+struct EmitterSampling {
+  using heuristic = Heuristic;
+  static constexpr bool samples_emitters = true;
+  static float light_weight(float light_pdf, float bounce_pdf) {
+    return Heuristic::weight(light_pdf, bounce_pdf);
+  }
+  static float bounce_weight(float bounce_pdf, float light_pdf) {
+    return Heuristic::weight(bounce_pdf, light_pdf);
+  }
+};
+
+/// Next-event estimation alone: emitters are reached only by light samples, and a bounce that
+/// lands on one from a diffuse hit counts nothing. Noisier than MIS where the lamp is large
+/// or close; kept as the reference strategy the tests compare the others with.
+struct EmitterSamplingOnly {
+  static constexpr bool samples_emitters = true;
+  static float light_weight(float, float) { return 1.0f; }
+  static float bounce_weight(float, float) { return 0.0f; }
+};
+
+static_assert(MisHeuristic<BalanceHeuristic> && MisHeuristic<PowerHeuristic>);
+static_assert(LightSampling<PointLightsOnly> && LightSampling<EmitterSampling<PowerHeuristic>> &&
+              LightSampling<EmitterSampling<BalanceHeuristic>> &&
+              LightSampling<EmitterSamplingOnly>);
+
+}  // namespace glint

@@ -1,0 +1,163 @@
+#pragma once
+// The emissive spheres of a scene, as light sampling sees them: each one can draw a direction
+// towards itself from a shading point and give the density of any direction that reaches it,
+// and the table chooses one emitter per light sample.
+//
+// The choice is proportional to emitted power (area times mean radiance): it costs one binary
+// search, needs no state per shading point and is exact for a scene with one lamp, which is the
+// common case. Its weakness is a scene where a large dim emitter (a glowing sky dome) outshines
+// small bright lamps in power but not at the points being shaded; a choice by estimated
+// contribution at the point (pbrt-v4's light BVH) would serve that case better.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "glint/math/sampling.hpp"
+#include "glint/math/vector.hpp"
+
+namespace glint {
+
+/// How a shading point sees an emitter, which decides how directions towards it are drawn.
+enum class EmitterView : std::uint8_t {
+  outside,  ///< uniformly in the cone the sphere subtends (the visible cap, exactly)
+  inside,   ///< through a uniform point on the sphere's area: every point of it is visible
+  none,     ///< the point is on the emitter's outer surface: no direction from it reaches it
+};
+
+/// A direction towards an emitter and its density per unit solid angle at the shading point.
+struct EmitterDirection {
+  Vec3 direction;
+  float pdf;
+};
+
+/// An emissive sphere. Its radiance leaves both sides of the surface, as every sphere's does.
+struct SphereEmitter {
+  Vec3 center;
+  float radius;
+  Color radiance;
+  std::uint32_t sphere;  ///< index of the sphere in the scene
+
+  float area() const { return 4.0f * kPi * radius * radius; }
+
+  /// How `point` sees this emitter. `point_sphere` is the sphere the point lies on and
+  /// `from_inside` the side of it the point is on (a point on this emitter sees it only from
+  /// inside).
+  EmitterView view_from(const Vec3& point, std::uint32_t point_sphere, bool from_inside) const {
+    if (point_sphere == sphere) return from_inside ? EmitterView::inside : EmitterView::none;
+    const Vec3 offset = point - center;
+    return glm::dot(offset, offset) > radius * radius ? EmitterView::outside : EmitterView::inside;
+  }
+
+  /// A direction from `point` towards the sphere, from two uniform numbers; none when the
+  /// point cannot see it or the sample degenerates.
+  std::optional<EmitterDirection> sample_direction(const Vec3& point, EmitterView view,
+                                                   Vec2 u) const {
+    if (view == EmitterView::outside) {
+      const Vec3 to_center = center - point;
+      const float distance = std::sqrt(glm::dot(to_center, to_center));
+      const float one_minus_cos_max = cone_one_minus_cos_max(distance);
+      const Vec3 local = sample_uniform_cone(u, one_minus_cos_max);
+      return EmitterDirection{Frame::around(to_center / distance).to_world(local),
+                              uniform_cone_pdf(one_minus_cos_max)};
+    }
+    if (view == EmitterView::inside) {
+      const Vec3 normal = sample_uniform_sphere(u);
+      const Vec3 to_light = center + radius * normal - point;
+      const float distance2 = glm::dot(to_light, to_light);
+      if (!(distance2 > 0.0f)) return std::nullopt;
+      const Vec3 direction = to_light / std::sqrt(distance2);
+      const float cosine = std::fabs(glm::dot(direction, normal));
+      if (!(cosine > 0.0f)) return std::nullopt;
+      return EmitterDirection{direction, distance2 / (area() * cosine)};
+    }
+    return std::nullopt;
+  }
+
+  /// The density with which sample_direction(point, view, .) gives `direction`, where the ray
+  /// from `point` along it meets this sphere first at distance `distance`, with outward normal
+  /// `normal` there.
+  float direction_pdf(const Vec3& point, EmitterView view, const Vec3& direction, float distance,
+                      const Vec3& normal) const {
+    if (view == EmitterView::outside) {
+      const Vec3 to_center = center - point;
+      return uniform_cone_pdf(cone_one_minus_cos_max(std::sqrt(glm::dot(to_center, to_center))));
+    }
+    if (view == EmitterView::inside) {
+      const float cosine = std::fabs(glm::dot(direction, normal));
+      return cosine > 0.0f ? distance * distance / (area() * cosine) : 0.0f;
+    }
+    return 0.0f;
+  }
+
+ private:
+  /// 1 - cos of the half-angle the sphere subtends at distance `distance` from its centre:
+  /// sin^2 / (1 + cos), which keeps its precision for small, distant spheres.
+  float cone_one_minus_cos_max(float distance) const {
+    const float sin2_max = std::fmin(1.0f, (radius / distance) * (radius / distance));
+    const float cos2_max =
+        std::fmax(0.0f, (distance - radius) * (distance + radius)) / (distance * distance);
+    return sin2_max / (1.0f + std::sqrt(cos2_max));
+  }
+};
+
+/// The scene's emitters and the distribution light sampling chooses them from.
+class EmitterTable {
+ public:
+  struct Choice {
+    std::uint32_t index;
+    float probability;
+  };
+
+  EmitterTable() = default;
+
+  /// Chooses in proportion to power: area times the mean of the radiance's channels.
+  explicit EmitterTable(std::vector<SphereEmitter> emitters) : emitters_(std::move(emitters)) {
+    std::vector<double> power(emitters_.size());
+    double total = 0.0;
+    for (std::size_t i = 0; i < emitters_.size(); ++i) {
+      const SphereEmitter& e = emitters_[i];
+      const double mean = (double(e.radiance.r) + e.radiance.g + e.radiance.b) / 3.0;
+      power[i] = double(e.radius) * e.radius * mean;
+      total += power[i];
+    }
+    cdf_.resize(emitters_.size());
+    probability_.resize(emitters_.size());
+    double sum = 0.0;
+    float previous = 0.0f;
+    for (std::size_t i = 0; i < emitters_.size(); ++i) {
+      sum += power[i];
+      cdf_[i] = i + 1 == emitters_.size() ? 1.0f : float(total > 0.0 ? sum / total : 0.0);
+      // The probability of a choice is exactly the width of its step of the cdf as stored,
+      // so that choose() and probability() agree to the last bit.
+      probability_[i] = cdf_[i] - previous;
+      previous = cdf_[i];
+    }
+  }
+
+  bool empty() const { return emitters_.empty(); }
+  std::size_t size() const { return emitters_.size(); }
+  const SphereEmitter& operator[](std::uint32_t index) const { return emitters_[index]; }
+  const std::vector<SphereEmitter>& emitters() const { return emitters_; }
+
+  /// The emitter for a uniform number u in [0, 1), and the probability of choosing it.
+  /// Requires !empty().
+  Choice choose(float u) const {
+    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+    const auto index = static_cast<std::uint32_t>(
+        std::min<std::ptrdiff_t>(it - cdf_.begin(), std::ptrdiff_t(cdf_.size()) - 1));
+    return {index, probability_[index]};
+  }
+
+  /// The probability that choose() gives emitter `index`.
+  float probability(std::uint32_t index) const { return probability_[index]; }
+
+ private:
+  std::vector<SphereEmitter> emitters_;
+  std::vector<float> cdf_;  ///< cumulative probabilities, the last exactly 1
+  std::vector<float> probability_;
+};
+
+}  // namespace glint
