@@ -38,8 +38,7 @@ class ChainEstimator {
       }
       const SurfaceInteraction interaction = context_.interaction(ray, *hit);
       if constexpr (kSamplesEmitters)
-        radiance += throughput * (interaction.material().emission *
-                                  context_.emission_weight(ray, *hit, interaction, from));
+        radiance += throughput * context_.weighted_emission(ray, *hit, interaction, from);
       else
         radiance += throughput * interaction.material().emission;
       const ReportMaterial<C> material(interaction, ray.direction);
@@ -61,7 +60,7 @@ class ChainEstimator {
       if (!continuation) break;
 
       const ScatterSample next = material.sample(sampler);
-      if constexpr (kSamplesEmitters) from = PathContext<C>::origin_of(interaction, next);
+      if constexpr (kSamplesEmitters) from = PathContext<C>::origin_of(next);
       ray = PathContext<C>::continue_ray(interaction, next.direction);
       throughput *= next.tint * (next.factor * *continuation);
     }

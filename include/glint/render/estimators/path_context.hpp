@@ -23,13 +23,9 @@ struct TraceCounters {
   std::uint64_t invalid_samples = 0;  ///< NaN or infinite samples, dropped
 };
 
-/// Where the ray that reached a hit started, which light sampling needs to weigh the emission
-/// found there: the density light sampling would have had for the same direction depends on
-/// the point it is seen from.
+/// How the ray that reached a hit was chosen, which light sampling needs to weigh the emission
+/// found there. (Where it started is the ray's own origin and origin sphere.)
 struct BounceOrigin {
-  Vec3 point{0.0f};
-  std::uint32_t sphere = kNoSphere;
-  bool from_inside = false;  ///< the side of `sphere` the point was shaded on
   /// Density of the ray's direction per unit solid angle; zero for a camera ray and for a
   /// delta lobe, whose emission is not shared with light sampling (weight one).
   float pdf = 0.0f;
@@ -50,7 +46,10 @@ class PathContext {
   using Origin = std::conditional_t<kSamplesEmitters, BounceOrigin, NoBounceOrigin>;
 
   PathContext(const Scene& scene, int max_depth)
-      : scene_(scene), background_(scene.background()), max_depth_(max_depth) {}
+      : scene_(scene),
+        background_(scene.background()),
+        max_depth_(max_depth),
+        has_emitters_(!scene.emitters().empty()) {}
 
   // Finding the hit and setting it up are two steps, the set-up after the estimator's test for
   // a miss: done in one function before that test, the same arithmetic is fused into
@@ -97,23 +96,30 @@ class PathContext {
     return irradiance;
   }
 
-  /// The origin of a ray leaving `interaction` by a lobe sampled as `sample`.
-  static BounceOrigin origin_of(const SurfaceInteraction& interaction,
-                                const ScatterSample& sample) {
-    if (sample.delta) return {};
-    return {interaction.hit.point, interaction.hit.sphere, interaction.at.from_inside, sample.pdf};
+  /// How a ray leaving by the lobe sampled as `sample` was chosen.
+  static BounceOrigin origin_of(const ScatterSample& sample) {
+    return {sample.delta ? 0.0f : sample.pdf};
   }
 
-  /// The MIS weight of the emission at `interaction`, reached by `ray` from `origin`: one for
-  /// a camera ray, a delta lobe or a sphere that does not emit.
-  float emission_weight(const Ray& ray, const SphereHit& hit, const SurfaceInteraction& interaction,
-                        const BounceOrigin& origin) const {
+  /// The emission at `interaction`, reached by `ray` chosen as `origin`, with its MIS weight
+  /// (one for a camera ray or a delta lobe).
+  Color weighted_emission(const Ray& ray, const SphereHit& hit,
+                          const SurfaceInteraction& interaction, const BounceOrigin& origin) const {
     const std::uint32_t index = interaction.surface->emitter;
-    if (!(origin.pdf > 0.0f) || index == kNotAnEmitter) return 1.0f;
+    if (index == kNotAnEmitter) return interaction.material().emission;
+    return interaction.material().emission * emission_weight(ray, hit, interaction, index, origin);
+  }
+
+  /// The MIS weight of the emission of emitter `index` at `interaction`.
+  float emission_weight(const Ray& ray, const SphereHit& hit, const SurfaceInteraction& interaction,
+                        std::uint32_t index, const BounceOrigin& origin) const {
+    if (!(origin.pdf > 0.0f)) return 1.0f;
     const SphereEmitter& emitter = scene_.emitters()[index];
-    const EmitterView view = emitter.view_from(origin.point, origin.sphere, origin.from_inside);
+    // The ray started on its origin sphere; if that is the emitter it hit, it left it inwards
+    // (a ray leaving a sphere outwards cannot meet it again), so the point saw it from inside.
+    const EmitterView view = emitter.view_from(ray.origin, ray.origin_sphere, true);
     const float light_pdf = scene_.emitters().probability(index) *
-                            emitter.direction_pdf(origin.point, view, ray.direction, hit.t,
+                            emitter.direction_pdf(ray.origin, view, ray.direction, hit.t,
                                                   interaction.hit.outward_normal);
     return C::light_sampling::bounce_weight(origin.pdf, light_pdf);
   }
@@ -127,8 +133,8 @@ class PathContext {
   Color sample_emitter(const SurfaceInteraction& interaction, const ReportMaterial<C>& material,
                        BouncePdf&& bounce_pdf, SamplerType& sampler,
                        TraceCounters& counters) const {
+    if (!has_emitters_) return Color(0.0f);
     const EmitterTable& emitters = scene_.emitters();
-    if (emitters.empty()) return Color(0.0f);
     const float u_choice = sampler.next_1d();
     const Vec2 u_direction = sampler.next_2d();
     const EmitterTable::Choice choice = emitters.choose(u_choice);
@@ -170,6 +176,7 @@ class PathContext {
   const Scene& scene_;
   Color background_;
   int max_depth_;
+  bool has_emitters_;
 };
 
 }  // namespace glint

@@ -41,9 +41,11 @@ class TreeEstimator {
     const SurfaceInteraction interaction = context_.interaction(ray, *hit);
     const ReportMaterial<C> material(interaction, ray.direction);
 
-    Color radiance = interaction.material().emission;
+    Color radiance;
     if constexpr (kSamplesEmitters)
-      radiance *= context_.emission_weight(ray, *hit, interaction, from);
+      radiance = context_.weighted_emission(ray, *hit, interaction, from);
+    else
+      radiance = interaction.material().emission;
     std::optional<float> continuation;
     if (depth < context_.max_depth())
       continuation = context_.roulette_weight(depth, throughput, sampler);
@@ -66,7 +68,7 @@ class TreeEstimator {
         const ScatterSample bounce = material.sample_lobe(Lobe::diffuse, sampler);
         const float factor = bounce.factor * *continuation;
         Origin origin{};
-        if constexpr (kSamplesEmitters) origin = PathContext<C>::origin_of(interaction, bounce);
+        if constexpr (kSamplesEmitters) origin = PathContext<C>::origin_of(bounce);
         incoming += factor * trace(PathContext<C>::continue_ray(interaction, bounce.direction),
                                    depth + 1, throughput * max_component(bounce.tint) * factor,
                                    origin, sampler, counters);
