@@ -21,8 +21,10 @@
 #include "glint/policy/antialiasing.hpp"
 #include "glint/policy/diffuse_sampling.hpp"
 #include "glint/policy/fresnel.hpp"
+#include "glint/policy/light_sampling.hpp"
 #include "glint/policy/sampler.hpp"
 #include "glint/policy/sphere_shading.hpp"
+#include "glint/scene/emitters.hpp"
 #include "glint/scene/inclusion_tree.hpp"
 #include "glint/scene/scene.hpp"
 #include "glint/scene/scene_description.hpp"
@@ -208,6 +210,68 @@ void BM_HemisphereWarp(benchmark::State& state) {
 }
 BENCHMARK_TEMPLATE(BM_HemisphereWarp, glint::UniformHemisphere);
 BENCHMARK_TEMPLATE(BM_HemisphereWarp, glint::CosineHemisphere);
+
+// ---------------------------------------------------------------------------------------------
+// Light sampling: a direction towards a sphere emitter, the choice of an emitter, MIS weights
+
+/// Shading points around a lamp of radius 2 at the origin: outside it at distances 3 to 60 (the
+/// cone sampling) or, for the inside benchmark, within it (area sampling).
+struct EmitterInputs {
+  glint::SphereEmitter lamp{Vec3(0.0f), 2.0f, glint::Color(5.0f), 0};
+  std::vector<Vec3> outside, inside;
+  std::vector<Vec2> u = random_unit_squares();
+  EmitterInputs() : outside(kInputs), inside(kInputs) {
+    glint::Pcg32 rng(7, 7);
+    for (std::size_t i = 0; i < kInputs; ++i) {
+      outside[i] = uniform(rng, 3.0f, 60.0f) * random_unit_vector(rng);
+      inside[i] = uniform(rng, 0.0f, 1.9f) * random_unit_vector(rng);
+    }
+  }
+};
+
+void BM_EmitterDirection(benchmark::State& state) {
+  const EmitterInputs in;
+  const bool from_inside = state.range(0) != 0;
+  const std::vector<Vec3>& points = from_inside ? in.inside : in.outside;
+  const glint::EmitterView view =
+      from_inside ? glint::EmitterView::inside : glint::EmitterView::outside;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(in.lamp.sample_direction(points[i & kMask], view, in.u[i & kMask]));
+    ++i;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_EmitterDirection)->ArgName("inside")->Arg(0)->Arg(1);
+
+/// Choosing one of N emitters of random radii and radiances by power (a binary search).
+void BM_EmitterChoice(benchmark::State& state) {
+  glint::Pcg32 rng(8, 8);
+  std::vector<glint::SphereEmitter> emitters;
+  for (std::uint32_t k = 0; k < std::uint32_t(state.range(0)); ++k)
+    emitters.push_back(
+        {Vec3(0.0f), uniform(rng, 0.1f, 3.0f), glint::Color(uniform(rng, 1, 20)), k});
+  const glint::EmitterTable table(std::move(emitters));
+  const std::vector<Vec2> u = random_unit_squares();
+  std::size_t i = 0;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(table.choose(u[i++ & kMask].x));
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_EmitterChoice)->ArgName("emitters")->Arg(1)->Arg(64)->Arg(4096);
+
+template <glint::MisHeuristic H>
+void BM_MisWeight(benchmark::State& state) {
+  const std::vector<Vec2> u = random_unit_squares();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Vec2& p = u[i++ & kMask];
+    benchmark::DoNotOptimize(H::weight(p.x * 10.0f, p.y * 10.0f));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK_TEMPLATE(BM_MisWeight, glint::BalanceHeuristic);
+BENCHMARK_TEMPLATE(BM_MisWeight, glint::PowerHeuristic);
 
 // ---------------------------------------------------------------------------------------------
 // Fresnel
