@@ -149,7 +149,8 @@ SphereEmitter make_emitter(Vec3 center, float radius) {
 
 // ---- the uniform cone ---------------------------------------------------------------------
 
-TEST_CASE("sample_uniform_cone follows the uniform law over the cone", "[emitters][statistical]") {
+TEST_CASE("emitter sampling: sample_uniform_cone follows the uniform law over the cone",
+          "[emitters][statistical]") {
   // 1 - cos(theta_max): a cone wider than a hemisphere, the whole sphere, and a narrow one.
   const double cones[] = {1.5, 2.0, 1e-3};
   const int n = 1 << 17;
@@ -175,7 +176,8 @@ TEST_CASE("sample_uniform_cone follows the uniform law over the cone", "[emitter
   }
 }
 
-TEST_CASE("uniform_cone_pdf is the reciprocal of the cone's solid angle", "[emitters]") {
+TEST_CASE("emitter sampling: uniform_cone_pdf is the reciprocal of the cone's solid angle",
+          "[emitters]") {
   // Integrating a constant density over the cone gives pdf * 2 pi (1 - cos theta_max): one.
   for (const double m : {2.0, 1.0, 0.3, 1e-3, 1e-6, 5e-9}) {
     INFO("1 - cos theta_max = " << m);
@@ -184,7 +186,9 @@ TEST_CASE("uniform_cone_pdf is the reciprocal of the cone's solid angle", "[emit
   }
 }
 
-TEST_CASE("a tiny distant cone keeps a finite density and its directions inside it", "[emitters]") {
+TEST_CASE(
+    "emitter sampling: a tiny distant cone keeps a finite density and its directions inside it",
+    "[emitters]") {
   // A sphere of radius 1 at distance 1e4: 1 - cos theta_max ~ 5e-9, below float's epsilon
   // at 1, which is why the cone is given by 1 - cos and not by the cosine.
   const double r = 1.0, d = 1e4;
@@ -234,7 +238,7 @@ TEST_CASE("a tiny distant cone keeps a finite density and its directions inside 
 
 // ---- SphereEmitter -------------------------------------------------------------------------
 
-TEST_CASE("SphereEmitter::view_from", "[emitters]") {
+TEST_CASE("emitter sampling: SphereEmitter::view_from", "[emitters]") {
   const SphereEmitter emitter = make_emitter(Vec3(1.0f, 2.0f, 3.0f), 2.0f);
   const Vec3 on_surface(1.0f, 2.0f, 5.0f);
   // A point on the emitter's own surface sees it only from inside.
@@ -251,8 +255,9 @@ TEST_CASE("SphereEmitter::view_from", "[emitters]") {
                               Vec3(0.0f, 0.0f, -1.0f)) == 0.0f);
 }
 
-TEST_CASE("SphereEmitter from outside: every direction hits, uniformly over the cone",
-          "[emitters][statistical]") {
+TEST_CASE(
+    "emitter sampling: SphereEmitter from outside: every direction hits, uniformly over the cone",
+    "[emitters][statistical]") {
   const DVec center{1.0, 2.0, 3.0};
   const double r = 2.0;
   const SphereEmitter emitter = make_emitter(to_float(center), float(r));
@@ -295,8 +300,10 @@ TEST_CASE("SphereEmitter from outside: every direction hits, uniformly over the 
   }
 }
 
-TEST_CASE("SphereEmitter from inside: the density integrates to one over all directions",
-          "[emitters][statistical]") {
+TEST_CASE(
+    "emitter sampling: SphereEmitter from inside: the density integrates to one over all "
+    "directions",
+    "[emitters][statistical]") {
   // Seen from inside, directions are drawn through uniform points of the sphere's area; the
   // density must then cover every direction that meets the sphere from there. Two checks,
   // both independent of how the library draws its samples:
@@ -412,7 +419,8 @@ TEST_CASE("SphereEmitter from inside: the density integrates to one over all dir
 
 // ---- EmitterTable --------------------------------------------------------------------------
 
-TEST_CASE("EmitterTable chooses emitters in proportion to power", "[emitters][statistical]") {
+TEST_CASE("emitter sampling: EmitterTable chooses emitters in proportion to power",
+          "[emitters][statistical]") {
   // Power is area times mean radiance: r^2 * (R + G + B) / 3, up to a common factor.
   const std::vector<SphereEmitter> emitters = {
       {Vec3(0.0f), 1.0f, Color(3.0f, 0.0f, 0.0f), 0u},
@@ -531,7 +539,8 @@ void check_heuristic_limits() {
 
 }  // namespace
 
-TEST_CASE("balance heuristic: weights of (a, b) and (b, a) sum to one", "[emitters]") {
+TEST_CASE("emitter sampling: balance heuristic: weights of (a, b) and (b, a) sum to one",
+          "[emitters]") {
   // The balance weight is a / (a + b) (Veach 1997, 9.2.2).
   CHECK(glint::BalanceHeuristic::weight(1.0f, 3.0f) == Approx(0.25));
   check_heuristic_limits<glint::BalanceHeuristic>();
@@ -543,7 +552,8 @@ TEST_CASE("balance heuristic: weights of (a, b) and (b, a) sum to one", "[emitte
   }
 }
 
-TEST_CASE("power heuristic: weights of (a, b) and (b, a) sum to one", "[emitters]") {
+TEST_CASE("emitter sampling: power heuristic: weights of (a, b) and (b, a) sum to one",
+          "[emitters]") {
   // The power weight (exponent 2) is a^2 / (a^2 + b^2) (Veach 1997, 9.2.4).
   CHECK(glint::PowerHeuristic::weight(1.0f, 3.0f) == Approx(0.1));
   check_heuristic_limits<glint::PowerHeuristic>();
@@ -560,8 +570,9 @@ TEST_CASE("power heuristic: weights of (a, b) and (b, a) sum to one", "[emitters
   }
 }
 
-TEST_CASE("EmitterSamplingOnly: light samples weigh one, bounces onto emitters zero",
-          "[emitters]") {
+TEST_CASE(
+    "emitter sampling: EmitterSamplingOnly: light samples weigh one, bounces onto emitters zero",
+    "[emitters]") {
   using L = glint::EmitterSamplingOnly;
   STATIC_REQUIRE(L::samples_emitters);
   STATIC_REQUIRE_FALSE(glint::PointLightsOnly::samples_emitters);
@@ -580,7 +591,7 @@ TEST_CASE("EmitterSamplingOnly: light samples weigh one, bounces onto emitters z
 
 // ---- Russian roulette ----------------------------------------------------------------------
 
-TEST_CASE("RussianRoulette::continue_probability", "[emitters]") {
+TEST_CASE("emitter sampling: RussianRoulette::continue_probability", "[emitters]") {
   using R = glint::RussianRoulette;
   // Never before three bounces, whatever the throughput.
   for (const int depth : {0, 1, 2})
