@@ -22,12 +22,17 @@ struct PointLightsOnly {
   static float bounce_weight(float, float) { return 1.0f; }
 };
 
+/// Both heuristics are written in the ratio of the densities, 1 / (1 + (other/pdf)^k): the
+/// densities may lie near the ends of the float range (the cone of a small distant lamp, the
+/// area density at a grazing point), where pdf^2 or pdf + other_pdf would overflow or
+/// underflow and the two weights would no longer sum to one, or be 0/0.
+
 /// The balance heuristic: each strategy weighted by its share of the summed densities.
 struct BalanceHeuristic {
   static float weight(float pdf, float other_pdf) {
     if (!(pdf > 0.0f)) return 0.0f;
     if (std::isinf(pdf)) return 1.0f;
-    return pdf / (pdf + other_pdf);
+    return 1.0f / (1.0f + other_pdf / pdf);
   }
 };
 
@@ -37,9 +42,9 @@ struct BalanceHeuristic {
 struct PowerHeuristic {
   static float weight(float pdf, float other_pdf) {
     if (!(pdf > 0.0f)) return 0.0f;
-    const float a = pdf * pdf;
-    if (std::isinf(a)) return 1.0f;
-    return a / (a + other_pdf * other_pdf);
+    if (std::isinf(pdf)) return 1.0f;
+    const float ratio = other_pdf / pdf;
+    return 1.0f / (1.0f + ratio * ratio);
   }
 };
 
