@@ -1,8 +1,10 @@
 #pragma once
 // Warps from uniform samples in [0,1)^2 to the distributions the renderer needs. glint owns
 // these rather than using <random> distributions, whose output differs between standard
-// libraries.
+// libraries. Clamps use std::max, not std::fmax: the same value for every input here (NaN
+// gives 0 either way), but fmax is a library call unless the compiler may ignore NaNs.
 
+#include <algorithm>
 #include <cmath>
 
 #include "glint/math/vector.hpp"
@@ -31,7 +33,7 @@ struct Frame {
 /// Uniform on the hemisphere z >= 0; pdf 1/(2 pi).
 inline Vec3 sample_uniform_hemisphere(Vec2 u) {
   const float z = u.x;
-  const float r = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
+  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
   const float phi = 2.0f * kPi * u.y;
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
@@ -41,13 +43,13 @@ inline constexpr float kUniformHemispherePdf = 0.5f * kInvPi;
 inline Vec3 sample_cosine_hemisphere(Vec2 u) {
   const float r = std::sqrt(u.x);
   const float phi = 2.0f * kPi * u.y;
-  return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::fmax(0.0f, 1.0f - u.x))};
+  return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u.x))};
 }
 
 /// Uniform on the unit sphere; pdf 1/(4 pi).
 inline Vec3 sample_uniform_sphere(Vec2 u) {
   const float z = 1.0f - 2.0f * u.x;
-  const float r = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
+  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
   const float phi = 2.0f * kPi * u.y;
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
@@ -58,7 +60,7 @@ inline Vec3 sample_uniform_sphere(Vec2 u) {
 inline Vec3 sample_uniform_cone(Vec2 u, float one_minus_cos_max) {
   const float one_minus_cos = u.x * one_minus_cos_max;
   const float z = 1.0f - one_minus_cos;
-  const float r = std::sqrt(std::fmax(0.0f, one_minus_cos * (2.0f - one_minus_cos)));
+  const float r = std::sqrt(std::max(0.0f, one_minus_cos * (2.0f - one_minus_cos)));
   const float phi = 2.0f * kPi * u.y;
   return {r * std::cos(phi), r * std::sin(phi), z};
 }

@@ -96,9 +96,9 @@ struct SphereEmitter {
   /// 1 - cos of the half-angle the sphere subtends at distance `distance` from its centre:
   /// sin^2 / (1 + cos), which keeps its precision for small, distant spheres.
   float cone_one_minus_cos_max(float distance) const {
-    const float sin2_max = std::fmin(1.0f, (radius / distance) * (radius / distance));
+    const float sin2_max = std::min(1.0f, (radius / distance) * (radius / distance));
     const float cos2_max =
-        std::fmax(0.0f, (distance - radius) * (distance + radius)) / (distance * distance);
+        std::max(0.0f, (distance - radius) * (distance + radius)) / (distance * distance);
     return sin2_max / (1.0f + std::sqrt(cos2_max));
   }
 };
