@@ -2,9 +2,16 @@
 // compiled (GLINT_VARIANT names a type of glint::variants, e.g. -DGLINT_VARIANT=report). One
 // executable per variant keeps each translation unit to a single instantiation of the renderer.
 
+#include <pthread.h>
+#include <unistd.h>
+
+#include <atomic>
 #include <cctype>
 #include <charconv>
+#include <climits>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -47,8 +54,14 @@ options:
   -h, --help          this help
 
 Progress with an estimated time left goes to stderr while rendering, then one summary line.
+The image is rendered in passes (1 sample per pixel, 2, 4, ... then 32 more at a time): the
+first SIGINT, SIGTERM or SIGHUP stops after the current pass and writes the image of the
+passes done, saying how many samples per pixel it holds; a second one exits at once.
+Outputs are checked before rendering and written to new temporary files beside them, renamed
+into place only when all were written.
 Exit status: 0 on success, 1 for a bad scene or an unwritable output, 2 for bad options,
-3 for a valid scene that this variant cannot render (a shading kind it was built without).
+3 for a valid scene that this variant cannot render (a shading kind it was built without),
+128 + the signal's number when a signal stopped the render (130 for SIGINT).
 )";
 
 struct Options {
@@ -132,14 +145,136 @@ Options parse_options(int argc, char** argv) {
     }
   }
   if (options.scene.empty()) throw UsageError{"no scene file given"};
+  // Checked before the scene is read, which can take long: the scene cannot change this.
+  if (options.width && options.height &&
+      std::int64_t{*options.width} * *options.height > glint::limits::max_image_pixels)
+    throw UsageError{"--width " + std::to_string(*options.width) + " --height " +
+                     std::to_string(*options.height) + " exceeds " +
+                     std::to_string(glint::limits::max_image_pixels) + " pixels"};
   return options;
 }
 
-void check_writable_directory(const std::string& file) {
-  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
-  if (!parent.empty() && !std::filesystem::is_directory(parent))
-    throw glint::ImageWriteError("cannot write " + file + ": directory " + parent.string() +
-                                 " does not exist");
+/// The three signals that ask a render to stop. The first one stops after the current pass and
+/// writes the image of the passes done; a second one exits at once.
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
+
+// What the signal handler shares with the program: only lock-free atomics and fixed buffers,
+// written with the signals blocked, so that the handler reads them whole.
+static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free);
+std::atomic<bool> stop_requested{false};
+std::atomic<int> stop_signal{0};  ///< the first stop signal received, or 0
+constexpr int kMaxTemporaries = 2;
+char temporaries[kMaxTemporaries][PATH_MAX];
+std::atomic<int> temporary_count{0};
+
+extern "C" void on_stop_signal(int signal) {
+  // Async-signal-safe only: atomics, unlink and _exit.
+  if (stop_signal.exchange(signal) != 0) {
+    for (int i = 0, n = temporary_count.load(); i < n; ++i)
+      unlink(temporaries[i]);
+    static constexpr char kMessage[] = "\nglint-render: a second stop signal: exiting at once\n";
+    [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+    _exit(128 + signal);
+  }
+  stop_requested.store(true);
+}
+
+const char* signal_name(int signal) {
+  switch (signal) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGHUP:
+      return "SIGHUP";
+    default:
+      return "a signal";
+  }
+}
+
+void install_signal_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  action.sa_flags = SA_RESTART;
+  sigemptyset(&action.sa_mask);
+  for (const int signal : kStopSignals) {
+    // A signal ignored on entry stays ignored: nohup and background jobs rely on it.
+    struct sigaction previous {};
+    if (sigaction(signal, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN) continue;
+    sigaction(signal, &action, nullptr);
+  }
+  // Past `ulimit -f`, write() then fails with EFBIG and the temporary is removed; by default
+  // the signal would kill the process and leave the temporary behind.
+  std::signal(SIGXFSZ, SIG_IGN);
+}
+
+/// Holds the stop signals back for its lifetime, so that a second signal's handler never sees
+/// the list of temporaries half-updated or a set of outputs half-renamed.
+class BlockStopSignals {
+ public:
+  BlockStopSignals() {
+    sigset_t signals;
+    sigemptyset(&signals);
+    for (const int signal : kStopSignals)
+      sigaddset(&signals, signal);
+    pthread_sigmask(SIG_BLOCK, &signals, &previous_);
+  }
+  ~BlockStopSignals() { pthread_sigmask(SIG_SETMASK, &previous_, nullptr); }
+  BlockStopSignals(const BlockStopSignals&) = delete;
+  BlockStopSignals& operator=(const BlockStopSignals&) = delete;
+
+ private:
+  sigset_t previous_;
+};
+
+/// Forgets the temporaries the handler would remove, when the files themselves are gone or
+/// renamed (declared before them, it runs after their removal).
+struct ForgetTemporaries {
+  ~ForgetTemporaries() {
+    const BlockStopSignals block;
+    temporary_count.store(0);
+  }
+};
+
+/// Refuses, before any rendering, an output that cannot be written or would destroy the scene.
+void check_output(const std::string& output, const std::string& scene) {
+  glint::check_output_path(output);
+  std::error_code error;
+  if (std::filesystem::equivalent(output, scene, error))
+    throw glint::ImageWriteError("cannot write " + output + ": it is the scene file " + scene);
+}
+
+/// Writes every output to a new temporary file, then renames them all into place only when
+/// all were written; on any failure, or a second signal, no temporary is left.
+void write_outputs(const glint::Film& film, const std::string& png,
+                   const std::optional<std::string>& pfm) {
+  std::vector<glint::FileContents> files{{png, glint::encode_png(film)}};
+  if (pfm) files.push_back({*pfm, glint::encode_pfm(film)});
+
+  const ForgetTemporaries forget;
+  std::vector<glint::StagedFile> staged;
+  staged.reserve(files.size());
+  {
+    const BlockStopSignals block;
+    for (const glint::FileContents& file : files) {
+      staged.emplace_back(file.path);
+      const std::string& name = staged.back().temporary().native();
+      if (name.size() >= PATH_MAX)
+        throw glint::ImageWriteError("cannot write " + file.path.string() + ": path too long");
+      std::memcpy(temporaries[temporary_count.load()], name.c_str(), name.size() + 1);
+      temporary_count.fetch_add(1);
+    }
+  }
+  for (std::size_t i = 0; i < files.size(); ++i)
+    staged[i].write(files[i].bytes);
+  const BlockStopSignals block;
+  for (glint::StagedFile& file : staged)
+    file.commit();
+}
+
+[[noreturn]] void usage_error(const std::string& message) {
+  std::cerr << "glint-render: " << message << "\n\n" << kUsage;
+  std::exit(2);
 }
 
 }  // namespace
@@ -149,10 +284,16 @@ int main(int argc, char** argv) {
   try {
     options = parse_options(argc, argv);
   } catch (const UsageError& error) {
-    std::cerr << "glint-render: " << error.message << "\n\n" << kUsage;
-    return 2;
+    usage_error(error.message);
   }
+  install_signal_handlers();
   try {
+    const std::string output = options.output
+                                   ? *options.output
+                                   : std::filesystem::path(options.scene).stem().string() + ".png";
+    check_output(output, options.scene);
+    if (options.hdr) check_output(*options.hdr, options.scene);
+
     const glint::Scene scene = glint::Scene::build(glint::read_scene_file(options.scene));
     glint::check_supported<Variant>(scene);
 
@@ -163,17 +304,20 @@ int main(int argc, char** argv) {
     if (options.height) settings.height = *options.height;
     if (options.threads) settings.threads = *options.threads;
     settings.seed = options.seed;
-
-    const std::string output = options.output
-                                   ? *options.output
-                                   : std::filesystem::path(options.scene).stem().string() + ".png";
-    check_writable_directory(output);
-    if (options.hdr) check_writable_directory(*options.hdr);
+    // The scene's own settings were checked when it was read: what fails now is an option.
+    if (const std::string problem = glint::image_settings_problem(settings); !problem.empty())
+      usage_error("the options with " + options.scene + "'s image settings: " + problem);
 
     const glint::RenderResult result = glint::Renderer<Variant>::render(
-        scene, settings, glint::cli::ProgressPrinter(!options.quiet));
-    glint::write_png(result.film, output);
-    if (options.hdr) glint::write_pfm(result.film, *options.hdr);
+        scene, settings,
+        glint::RenderControl{glint::cli::ProgressPrinter(!options.quiet), {}, &stop_requested});
+    const int signal = stop_signal.load();
+    if (result.samples_per_pixel == 0) {
+      std::fprintf(stderr, "glint-render: stopped by %s before a pass completed: nothing written\n",
+                   signal_name(signal));
+      return 128 + signal;
+    }
+    write_outputs(result.film, output, options.hdr);
 
     if (!options.quiet) {
       const glint::RenderStats& stats = result.stats;
@@ -181,13 +325,21 @@ int main(int argc, char** argv) {
                    "glint-render (%s): %s -> %s: %dx%d, %d spp, depth %d in %.2f s on %d threads: "
                    "%.3g samples, %.1f Mrays/s\n",
                    std::string(kVariantName).c_str(), options.scene.c_str(), output.c_str(),
-                   settings.width, settings.height, settings.samples_per_pixel, settings.max_depth,
+                   settings.width, settings.height, result.samples_per_pixel, settings.max_depth,
                    stats.seconds, stats.threads, double(stats.samples),
                    double(stats.rays) / stats.seconds * 1e-6);
     }
     if (result.stats.invalid_samples > 0)
       std::fprintf(stderr, "glint-render: warning: %llu samples were NaN or infinite and dropped\n",
                    static_cast<unsigned long long>(result.stats.invalid_samples));
+    if (signal != 0) {
+      std::fprintf(stderr,
+                   "glint-render: stopped by %s: %s holds %d of %d samples per pixel (%d of %d "
+                   "passes)\n",
+                   signal_name(signal), output.c_str(), result.samples_per_pixel,
+                   settings.samples_per_pixel, result.passes_done, result.pass_count);
+      return 128 + signal;
+    }
     return 0;
   } catch (const glint::UnsupportedSceneError& error) {
     std::cerr << error.what() << "\n";

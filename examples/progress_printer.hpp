@@ -1,6 +1,9 @@
 #pragma once
 // glint-render's progress on stderr: one line redrawn in place on a terminal, a line every tenth
 // of the work otherwise (logs), each with the time elapsed and an estimate of the time left.
+// The renderer reports at least every 0.1 s, so the terminal line and its estimate keep moving
+// however long a tile or a pass takes; the render's last report (finished or stopped) ends the
+// line.
 
 #include <unistd.h>
 
@@ -30,7 +33,7 @@ class ProgressPrinter {
   void operator()(const glint::RenderProgress& p) {
     if (!enabled_) return;
     const double fraction = p.fraction();
-    const bool done = p.tiles_done == p.tiles_total;
+    const bool done = p.last;
     if (terminal_) {
       if (!done && p.elapsed_seconds - last_print_ < 0.1) return;
     } else {

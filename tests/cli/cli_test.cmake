@@ -58,6 +58,13 @@ glint_cli_test(hdr-not-pfm STATUS 2 STDERR "--hdr writes a linear float PFM: the
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.exr OUTPUT out.png)
 glint_cli_test(renders STATUS 0 STDERR "Mrays/s" EXPECT_OUTPUT OUTPUT out.png
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --spp 2)
+# Sizes beyond the pixel limit are option errors: refused before the scene is read (a missing
+# scene would be status 1) when the options alone exceed it, after when the scene's size does.
+glint_cli_test(pixel-limit STATUS 2 STDERR "--width 32768 --height 4096 exceeds 67108864 pixels"
+               ARGS no-such.scene --width 32768 --height 4096)
+glint_cli_test(pixel-limit-with-scene STATUS 2
+               STDERR "tall.scene's image settings: image size 4096x32768 exceeds 67108864 pixels"
+               ARGS ${glint_cli_scenes}/tall.scene --width 4096 -o out.png OUTPUT out.png)
 glint_cli_test(quiet STATUS 0 STDERR "^$" STDOUT "^$" EXPECT_OUTPUT OUTPUT tiny.png
                ARGS ${glint_cli_scenes}/tiny.scene --quiet --threads 1)
 
@@ -78,6 +85,24 @@ glint_cli_progress_test(progress-report glint-render-report report
                         -o out.png --width 160 --height 96 --spp 3 --max-depth 2 --threads 2)
 glint_cli_progress_test(progress-default-variant glint-render [a-z_]+
                         -o out.png --width 160 --height 96 --spp 3 --max-depth 2 --threads 1)
+
+# Long renders (tests/cli/long_render_test.bash): the first SIGINT, SIGTERM or SIGHUP writes
+# the image of the completed passes, a second one exits at once; planted symbolic links are
+# never followed; all outputs or none; outputs refused before rendering; threads that cannot
+# start. Status 77: the case cannot run here (a read-only directory does not stop root).
+find_program(GLINT_BASH bash)
+if(GLINT_BASH)
+  foreach(case sigint sigterm sighup second_signal sigint_quiet planted_symlinks
+          hdr_fails_while_writing hdr_is_directory output_is_directory read_only_directory
+          scene_is_output threads_fail)
+    string(REPLACE "_" "-" name ${case})
+    add_test(NAME "cli: ${name}"
+             COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash ${case}
+                     $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
+                     ${PROJECT_BINARY_DIR}/cli-test/${name})
+    set_tests_properties("cli: ${name}" PROPERTIES LABELS cli SKIP_RETURN_CODE 77)
+  endforeach()
+endif()
 
 # A shading kind the variant's policy lacks is rejected when the scene is loaded; the example
 # program with its own policy renders the same scene.

@@ -52,11 +52,21 @@ std::string printed_to_file(bool enabled, const std::vector<glint::RenderProgres
   return text;
 }
 
+/// A report of `done` of `total` units of work (the last call when all is done).
+glint::RenderProgress report(int done, int total, double elapsed) {
+  glint::RenderProgress p;
+  p.samples_done = std::uint64_t(done);
+  p.samples_total = std::uint64_t(total);
+  p.elapsed_seconds = elapsed;
+  p.last = done == total;
+  return p;
+}
+
 /// Reports of a render of 16 tiles taking half a second per tile, for the given tile counts.
 std::vector<glint::RenderProgress> sixteenths(const std::vector<int>& done) {
   std::vector<glint::RenderProgress> reports;
   for (const int k : done)
-    reports.push_back({std::size_t(k), 16, 0.5 * k});
+    reports.push_back(report(k, 16, 0.5 * k));
   return reports;
 }
 
@@ -101,14 +111,22 @@ TEST_CASE("in a log, progress is a line per tenth of the work, ending at 100%", 
     CHECK(printed_to_file(true, sixteenths({16})) == "[100%] 8.0 s elapsed, ETA 0.0 s   \n");
   }
   SECTION("nothing done yet: no estimate") {
-    CHECK(printed_to_file(true, {{0, 16, 0.0}}) == "[  0%] 0.0 s elapsed, ETA --   \n");
+    CHECK(printed_to_file(true, {report(0, 16, 0.0)}) == "[  0%] 0.0 s elapsed, ETA --   \n");
   }
   SECTION("long renders: minutes and hours") {
-    CHECK(printed_to_file(true, {{1, 4, 30.0}, {2, 4, 75.0}, {3, 4, 5400.0}, {4, 4, 7200.0}}) ==
+    CHECK(printed_to_file(true, {report(1, 4, 30.0), report(2, 4, 75.0), report(3, 4, 5400.0),
+                                 report(4, 4, 7200.0)}) ==
           "[ 25%] 30.0 s elapsed, ETA 1m30s   \n"
           "[ 50%] 1m15s elapsed, ETA 1m15s   \n"
           "[ 75%] 1h30m elapsed, ETA 30m00s   \n"
           "[100%] 2h00m elapsed, ETA 0.0 s   \n");
+  }
+  SECTION("a stopped render: its last report is printed, whatever its tenth") {
+    glint::RenderProgress stopped = report(6, 16, 3.0);
+    stopped.last = true;
+    CHECK(printed_to_file(true, {report(5, 16, 2.5), stopped}) ==
+          "[ 31%] 2.5 s elapsed, ETA 5.5 s   \n"
+          "[ 37%] 3.0 s elapsed, ETA 5.0 s   \n");
   }
   SECTION("--quiet: nothing") {
     CHECK(printed_to_file(false, sixteenths({1, 2, 8, 16})).empty());
@@ -124,10 +142,10 @@ TEST_CASE("on a terminal, progress is one line redrawn at most every 0.1 s", "[c
   REQUIRE(tcsetattr(slave, TCSANOW, &raw) == 0);
   with_stderr_on(slave, [] {
     ProgressPrinter printer(true);
-    printer({1, 16, 0.5});   // drawn
-    printer({2, 16, 0.55});  // under 0.1 s later: skipped
-    printer({3, 16, 0.7});   // drawn
-    printer({16, 16, 0.8});  // the end is always drawn, and ends the line
+    printer(report(1, 16, 0.5));   // drawn
+    printer(report(2, 16, 0.55));  // under 0.1 s later: skipped
+    printer(report(3, 16, 0.7));   // drawn
+    printer(report(16, 16, 0.8));  // the end is always drawn, and ends the line
   });
   close(slave);
   std::string text;

@@ -21,6 +21,7 @@ if(DEFINED OUTPUT)
   elseif(NOT EXPECT_OUTPUT AND EXISTS ${work}/${OUTPUT})
     message(FATAL_ERROR "${OUTPUT} was written although the run failed")
   endif()
+  # Temporaries are OUT.XXXXXXXXXXXX.glint-partial; older versions used OUT.glint-partial.
   file(GLOB leftovers ${work}/*.glint-partial)
   if(leftovers)
     message(FATAL_ERROR "partial files left behind: ${leftovers}")

@@ -8,13 +8,16 @@
 
 namespace glint {
 
-/// Linear radiance per pixel, row-major from the top-left. Tone mapping and the sRGB transfer
-/// happen only when writing 8-bit images.
+/// Linear radiance per pixel, row-major from the top-left, black when made. Tone mapping and the
+/// sRGB transfer happen only when writing 8-bit images. A render also keeps its per-pixel sums
+/// of samples in one between passes.
 class Film {
  public:
   Film() = default;
   Film(int width, int height)
-      : width_(width), height_(height), pixels_(std::size_t(width) * std::size_t(height)) {}
+      : width_(width),
+        height_(height),
+        pixels_(std::size_t(width) * std::size_t(height), Color(0.0f)) {}
 
   int width() const { return width_; }
   int height() const { return height_; }

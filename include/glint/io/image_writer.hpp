@@ -1,19 +1,28 @@
 #pragma once
-// Writing a Film: 8-bit sRGB PNG (through Debian's libstb) and linear float PFM. Both are
-// written to a temporary file beside the target and renamed into place, so a failed write
-// never leaves a truncated image behind.
+// Writing a Film: 8-bit sRGB PNG (through Debian's libstb) and linear float PFM.
+//
+// Every file is written to a temporary file beside its target and renamed into place, so a
+// failed write never leaves a truncated image behind. The temporary's name is unpredictable
+// and it is created with O_EXCL and O_NOFOLLOW: it is always a new file, never one that was
+// already there, and a symbolic link planted beside the target is never followed. write_files
+// renames several files into place only once all of them have been written; a program that
+// must also clean up from a signal handler (glint-render) uses StagedFile directly.
 
+#include <fcntl.h>
 #include <stb_image_write.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <random>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "glint/error.hpp"
@@ -30,33 +39,134 @@ inline std::uint8_t linear_to_srgb8(float linear) {
   return static_cast<std::uint8_t>(std::lround(encoded * 255.0f));
 }
 
-namespace detail {
-
-inline void write_file_atomically(const std::filesystem::path& path,
-                                  const std::vector<char>& bytes) {
-  std::filesystem::path temporary = path;
-  temporary += ".glint-partial";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw ImageWriteError("cannot write " + path.string() + ": " + std::strerror(errno));
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw ImageWriteError("cannot write " + path.string() + ": write failed");
-    }
-  }
+/// Throws ImageWriteError unless `target` looks writable: its directory exists and lets this
+/// process create files, and the target is not a directory. A program calls it before long
+/// work, so that a mistyped output fails at once instead of after the render; the write itself
+/// still checks everything again.
+inline void check_output_path(const std::filesystem::path& target) {
+  namespace fs = std::filesystem;
+  const auto fail = [&](const std::string& why) {
+    throw ImageWriteError("cannot write " + target.string() + ": " + why);
+  };
+  if (target.filename().empty()) fail("the name is a directory");
+  const fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw ImageWriteError("cannot write " + path.string() + ": " + error.message());
-  }
+  const fs::file_status status = fs::status(directory, error);
+  if (!fs::exists(status)) fail("directory " + directory.string() + " does not exist");
+  if (!fs::is_directory(status)) fail(directory.string() + " is not a directory");
+  // AT_EACCESS: the permissions of the effective user, who will create the file.
+  if (faccessat(AT_FDCWD, directory.c_str(), W_OK | X_OK, AT_EACCESS) != 0)
+    fail("directory " + directory.string() + " is not writable (" + std::strerror(errno) + ")");
+  if (fs::is_directory(fs::symlink_status(target, error))) fail("it is a directory");
 }
 
-}  // namespace detail
+/// A file written under a temporary name beside `target`, then renamed over it by commit().
+/// Until then the target is untouched, and the destructor removes the temporary.
+class StagedFile {
+ public:
+  /// Creates the temporary, TARGET.XXXXXXXXXXXX.glint-partial with random hex digits, as a
+  /// new file (mode 0666 less the umask, as any new file). Throws ImageWriteError.
+  explicit StagedFile(std::filesystem::path target) : target_(std::move(target)) {
+    if (target_.filename().empty()) fail("the name is a directory");
+    std::random_device random;
+    for (int attempt = 0; attempt < 32; ++attempt) {
+      temporary_ = temporary_name(target_, std::uint64_t(random()) << 32 | random());
+      fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+      if (fd_ >= 0) return;
+      if (errno != EEXIST) fail(std::strerror(errno));
+    }
+    fail("no unused temporary file name");
+  }
+  StagedFile(StagedFile&& other) noexcept
+      : target_(std::move(other.target_)),
+        temporary_(std::move(other.temporary_)),
+        fd_(std::exchange(other.fd_, -1)),
+        state_(std::exchange(other.state_, State::moved)) {}
+  StagedFile& operator=(StagedFile&&) = delete;
+  ~StagedFile() {
+    if (fd_ >= 0) ::close(fd_);
+    if (state_ != State::committed && state_ != State::moved) ::unlink(temporary_.c_str());
+  }
+
+  const std::filesystem::path& target() const { return target_; }
+  const std::filesystem::path& temporary() const { return temporary_; }
+
+  /// Writes the whole content, flushes it to the disk (so that a crash after the rename
+  /// cannot leave an empty image) and closes the file. On failure removes the temporary and
+  /// throws ImageWriteError.
+  void write(const std::vector<char>& bytes) {
+    const char* data = bytes.data();
+    std::size_t left = bytes.size();
+    while (left > 0) {
+      const ssize_t written = ::write(fd_, data, std::min<std::size_t>(left, 1 << 30));
+      if (written < 0 && errno == EINTR) continue;
+      if (written <= 0) discard_and_fail(written < 0 ? std::strerror(errno) : "write failed");
+      data += written;
+      left -= std::size_t(written);
+    }
+    if (::fsync(fd_) != 0) discard_and_fail(std::strerror(errno));
+    const int closed = ::close(std::exchange(fd_, -1));
+    if (closed != 0) discard_and_fail(std::strerror(errno));
+    state_ = State::written;
+  }
+
+  /// Renames the written temporary over the target (replacing a file or a symbolic link
+  /// there, never writing through it). Throws ImageWriteError, removing the temporary.
+  void commit() {
+    if (state_ != State::written) fail("nothing was written");
+    if (::rename(temporary_.c_str(), target_.c_str()) != 0) discard_and_fail(std::strerror(errno));
+    state_ = State::committed;
+  }
+
+ private:
+  enum class State { open, written, committed, discarded, moved };
+
+  static std::filesystem::path temporary_name(const std::filesystem::path& target,
+                                              std::uint64_t random) {
+    char suffix[40];
+    std::snprintf(suffix, sizeof suffix, ".%012llx.glint-partial",
+                  static_cast<unsigned long long>(random & 0xffffffffffffULL));
+    // A name must fit in 255 bytes: shorten the target's part, not the random one.
+    std::string name = target.filename().string().substr(0, 255 - std::strlen(suffix));
+    return target.parent_path() / (name + suffix);
+  }
+
+  [[noreturn]] void fail(const std::string& why) const {
+    throw ImageWriteError("cannot write " + target_.string() + ": " + why);
+  }
+  [[noreturn]] void discard_and_fail(const std::string& why) {
+    if (fd_ >= 0) ::close(std::exchange(fd_, -1));
+    ::unlink(temporary_.c_str());
+    state_ = State::discarded;
+    fail(why);
+  }
+
+  std::filesystem::path target_;
+  std::filesystem::path temporary_;
+  int fd_ = -1;
+  State state_ = State::open;
+};
+
+/// A file's path and its whole content.
+struct FileContents {
+  std::filesystem::path path;
+  std::vector<char> bytes;
+};
+
+/// Writes every file to a temporary and renames them into place only once all were written:
+/// if one fails, none of the targets changes and no temporary is left (a rename failing after
+/// another succeeded, which takes the directory changing under the write, is the exception).
+/// Throws ImageWriteError naming the file that failed.
+inline void write_files(const std::vector<FileContents>& files) {
+  std::vector<StagedFile> staged;
+  staged.reserve(files.size());
+  for (const FileContents& file : files)
+    staged.emplace_back(file.path);
+  for (std::size_t i = 0; i < files.size(); ++i)
+    staged[i].write(files[i].bytes);
+  for (StagedFile& file : staged)
+    file.commit();
+}
 
 /// 8-bit RGB, sRGB-encoded, no tone mapping: radiance above 1 clips.
 inline std::vector<std::uint8_t> to_srgb8(const Film& film) {
@@ -70,7 +180,8 @@ inline std::vector<std::uint8_t> to_srgb8(const Film& film) {
   return bytes;
 }
 
-inline void write_png(const Film& film, const std::filesystem::path& path) {
+/// The PNG file of the film, in memory. Throws ImageWriteError if encoding fails.
+inline std::vector<char> encode_png(const Film& film) {
   const std::vector<std::uint8_t> pixels = to_srgb8(film);
   std::vector<char> encoded;
   const auto append = [](void* context, void* data, int size) {
@@ -79,12 +190,14 @@ inline void write_png(const Film& film, const std::filesystem::path& path) {
   };
   if (!stbi_write_png_to_func(append, &encoded, film.width(), film.height(), 3, pixels.data(),
                               film.width() * 3))
-    throw ImageWriteError("cannot write " + path.string() + ": PNG encoding failed");
-  detail::write_file_atomically(path, encoded);
+    throw ImageWriteError("PNG encoding of a " + std::to_string(film.width()) + "x" +
+                          std::to_string(film.height()) + " image failed");
+  return encoded;
 }
 
-/// Portable float map: linear RGB, little-endian (negative scale), rows bottom to top.
-inline void write_pfm(const Film& film, const std::filesystem::path& path) {
+/// The PFM file of the film, in memory: portable float map, linear RGB, little-endian
+/// (negative scale), rows bottom to top.
+inline std::vector<char> encode_pfm(const Film& film) {
   const std::string header =
       "PF\n" + std::to_string(film.width()) + " " + std::to_string(film.height()) + "\n-1.0\n";
   std::vector<char> bytes(header.begin(), header.end());
@@ -100,7 +213,21 @@ inline void write_pfm(const Film& film, const std::filesystem::path& path) {
       }
     }
   }
-  detail::write_file_atomically(path, bytes);
+  return bytes;
+}
+
+inline void write_png(const Film& film, const std::filesystem::path& path) {
+  std::vector<char> bytes;
+  try {
+    bytes = encode_png(film);
+  } catch (const ImageWriteError& error) {
+    throw ImageWriteError("cannot write " + path.string() + ": " + error.what());
+  }
+  write_files({{path, std::move(bytes)}});
+}
+
+inline void write_pfm(const Film& film, const std::filesystem::path& path) {
+  write_files({{path, encode_pfm(film)}});
 }
 
 }  // namespace glint

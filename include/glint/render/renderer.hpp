@@ -1,23 +1,34 @@
 #pragma once
-// Renderer<Config>: renders a Scene into a Film on every core.
+// Renderer<Config>: renders a Scene into a Film on every core, in passes of samples.
 //
-// Work is split into square tiles handed out by one atomic counter; each tile's pixels are
-// written by the one thread that took it, and every sample's randomness comes from hashing
-// (pixel, sample index, seed). So the image is the same bit for bit whatever the thread count
-// or scheduling. The hot loop has no locks, no allocation, no virtual calls and no exceptions.
+// A render is a sequence of passes (pass_ends in render_settings.hpp): each pass adds the
+// next samples of every pixel to that pixel's running sum, so after every pass the sums hold
+// a complete image of k samples per pixel, and a render can stop there. A pixel's samples are
+// added in index order into one float sum that lives in the film between passes, then divided
+// once by their count: exactly render_pixel's arithmetic, so the finished image does not
+// depend on the passes. Within a pass, square tiles are handed out by one atomic counter;
+// each tile's pixels are written by the one thread that took it, and every sample's
+// randomness comes from hashing (pixel, sample index, seed). So the image is the same bit for
+// bit whatever the thread count or scheduling. The hot loop has no locks, no allocation, no
+// virtual calls and no exceptions; threads meet only between passes.
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <climits>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
 #include <functional>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
 #include "glint/config.hpp"
+#include "glint/error.hpp"
 #include "glint/image/film.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/path_tracer.hpp"
@@ -27,11 +38,53 @@
 namespace glint {
 
 struct RenderResult {
+  /// The mean of the samples of the completed passes; black when no pass completed.
   Film film;
   RenderStats stats;
+  int samples_per_pixel = 0;  ///< samples in every pixel of `film`
+  int passes_done = 0;
+  int pass_count = 0;  ///< passes planned for the requested samples per pixel
+  /// Whether every requested sample is in the image (no stop request cut the render short).
+  bool complete() const { return passes_done == pass_count; }
+};
+
+/// A pass has completed: the sums of `samples_per_pixel` samples in every pixel are ready.
+struct PassReport {
+  int passes_done = 0;
+  int pass_count = 0;
+  int samples_per_pixel = 0;
+  double elapsed_seconds = 0.0;
+  const Film& sums;  ///< per-pixel sums of the samples so far; valid during the callback only
+  /// The image so far, bit for bit what a render stopped after this pass returns.
+  Film image() const;
 };
 
 using ProgressCallback = std::function<void(const RenderProgress&)>;
+/// Called after every pass; returning false stops the render there.
+using PassCallback = std::function<bool(const PassReport&)>;
+
+/// How a caller follows and stops a render. Every callback runs on the calling thread, never
+/// on a worker, while the workers wait or render; the render stops only between passes.
+struct RenderControl {
+  ProgressCallback progress;
+  PassCallback pass_done;
+  /// Checked before each pass, the first included: once true, the render returns the image of
+  /// the passes completed so far. A lock-free atomic, so a signal handler may set it.
+  const std::atomic<bool>* stop = nullptr;
+};
+
+/// The mean image of per-pixel sums of `samples` samples each (the division render_pixel does).
+inline Film mean_image(const Film& sums, int samples) {
+  Film image(sums.width(), sums.height());
+  for (int y = 0; y < sums.height(); ++y)
+    for (int x = 0; x < sums.width(); ++x)
+      image.at(x, y) = sums.at(x, y) / float(samples);
+  return image;
+}
+
+inline Film PassReport::image() const {
+  return mean_image(sums, samples_per_pixel);
+}
 
 /// The first sphere whose shading kind variant C's SphereShading policy does not support.
 template <RenderConfig C>
@@ -60,73 +113,121 @@ void check_supported(const Scene& scene) {
 template <RenderConfig C>
 class Renderer {
  public:
+  /// The longest the progress callback waits while rendering: progress and the time left keep
+  /// moving on scenes where a tile, or a single sample, takes longer.
+  static constexpr std::chrono::milliseconds progress_interval{100};
+
   /// Renders with the given settings; `progress`, if set, is called from the calling thread
-  /// as tiles complete (never from a worker). Throws SettingsError for settings outside the
-  /// limits and UnsupportedSceneError for a scene this variant cannot render.
+  /// (never from a worker). Throws SettingsError for settings outside the limits,
+  /// UnsupportedSceneError for a scene this variant cannot render, and Error when the worker
+  /// threads cannot be started (before any rendering).
   static RenderResult render(const Scene& scene, const RenderSettings& settings,
                              const ProgressCallback& progress = {}) {
+    return render(scene, settings, RenderControl{progress, {}, nullptr});
+  }
+
+  /// Renders pass by pass under `control`: progress reports, a callback after each pass, and
+  /// a stop request honoured between passes.
+  static RenderResult render(const Scene& scene, const RenderSettings& settings,
+                             const RenderControl& control) {
     validate(settings);
     check_supported<C>(scene);
     const auto start = std::chrono::steady_clock::now();
+    const auto elapsed = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
 
-    RenderResult result{Film(settings.width, settings.height), {}};
+    // The film holds each pixel's running sum until the end, when it is divided in place.
+    RenderResult result{Film(settings.width, settings.height), {}, 0, 0, 0};
     const Camera camera(scene.camera(), settings.width, settings.height);
     const PathTracer<C> tracer(scene, settings.max_depth);
+    const std::vector<int> ends = pass_ends(settings.samples_per_pixel, settings.max_pass_samples);
+    result.pass_count = int(ends.size());
 
     const TileGrid grid(settings);
     const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     const int thread_count = static_cast<int>(
         std::min<std::size_t>(settings.threads > 0 ? settings.threads : hardware, grid.count));
+    const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
 
-    std::atomic<std::size_t> next_tile{0};
-    std::atomic<std::size_t> tiles_done{0};
+    Schedule schedule(grid.count, ends.size());
     std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
     {
       std::vector<std::jthread> workers;
       workers.reserve(std::size_t(thread_count));
+      // Declared after the workers so that it runs before they are joined: on any way out
+      // (a callback that throws included) no worker is left waiting for a pass.
+      const StopWorkersOnExit stop_workers{schedule};
       for (int t = 0; t < thread_count; ++t) {
-        workers.emplace_back([&, t] {
-          TraceCounters& mine = counters[std::size_t(t)].counters;
-          for (std::size_t tile = next_tile++; tile < grid.count; tile = next_tile++) {
-            render_tile(tracer, camera, settings, grid.tile(tile), result.film, mine);
-            tiles_done.fetch_add(1, std::memory_order_release);
-            tiles_done.notify_all();
-          }
-        });
+        try {
+          workers.emplace_back([&, t] {
+            work(schedule, grid, ends, tracer, camera, settings, result.film,
+                 counters[std::size_t(t)]);
+          });
+        } catch (const std::system_error& error) {
+          throw Error("cannot start " + std::to_string(thread_count) +
+                      " rendering threads (started " + std::to_string(t) +
+                      "): " + error.code().message() + "; ask for fewer threads");
+        }
       }
-      report_progress(tiles_done, grid.count, start, progress);
-    }  // jthreads join here
 
+      const auto report = [&](bool last) {
+        if (!control.progress) return;
+        std::uint64_t done = 0;
+        for (const PaddedCounters& c : counters)
+          done += c.samples.load(std::memory_order_relaxed);
+        const int spp_done = result.passes_done ? ends[std::size_t(result.passes_done) - 1] : 0;
+        control.progress(RenderProgress{done, pixels * std::uint64_t(settings.samples_per_pixel),
+                                        elapsed(), result.passes_done, result.pass_count, spp_done,
+                                        last});
+      };
+      for (std::size_t pass = 0; pass < ends.size(); ++pass) {
+        if (control.stop && control.stop->load(std::memory_order_relaxed)) break;
+        schedule.release(pass);
+        while (!schedule.wait_for_pass(pass, progress_interval))
+          report(false);
+        result.passes_done = int(pass) + 1;
+        result.samples_per_pixel = ends[pass];
+        if (pass + 1 < ends.size()) report(false);
+        if (control.pass_done &&
+            !control.pass_done(PassReport{result.passes_done, result.pass_count,
+                                          result.samples_per_pixel, elapsed(), result.film}))
+          break;
+      }
+      report(true);
+    }  // the workers are told to stop, and join here
+
+    if (result.samples_per_pixel > 0)
+      for (int y = 0; y < settings.height; ++y)
+        for (int x = 0; x < settings.width; ++x)
+          result.film.at(x, y) = result.film.at(x, y) / float(result.samples_per_pixel);
     for (const PaddedCounters& c : counters) {
       result.stats.rays += c.counters.rays;
       result.stats.invalid_samples += c.counters.invalid_samples;
     }
-    result.stats.samples = std::uint64_t(settings.width) * std::uint64_t(settings.height) *
-                           std::uint64_t(settings.samples_per_pixel);
+    result.stats.samples = pixels * std::uint64_t(result.samples_per_pixel);
     result.stats.threads = thread_count;
-    result.stats.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.stats.seconds = elapsed();
     return result;
   }
 
-  /// One pixel's estimate: the mean of its samples. Exposed for tests and benchmarks.
+  /// One pixel's estimate: the mean of its samples, summed in one go. Exposed for tests and
+  /// benchmarks; render's passes give the same bits.
   static Color render_pixel(const PathTracer<C>& tracer, const Camera& camera,
                             const RenderSettings& settings, int x, int y, TraceCounters& counters) {
-    typename C::sampler sampler;
-    Color sum(0.0f);
-    for (int s = 0; s < settings.samples_per_pixel; ++s) {
-      sampler.start(PixelSample{std::uint32_t(x), std::uint32_t(y), std::uint32_t(s),
-                                std::uint32_t(settings.samples_per_pixel), settings.seed});
-      Vec2 film(float(x) + 0.5f, float(y) + 0.5f);
-      if constexpr (C::antialiasing::enabled)
-        film += C::antialiasing::offset(sampler.next_2d(), settings.antialias_sigma);
-      const Color sample = tracer.radiance(camera.ray_through(film), sampler, counters);
-      if (std::isfinite(sample.x) && std::isfinite(sample.y) && std::isfinite(sample.z))
-        sum += sample;
-      else
-        ++counters.invalid_samples;
-    }
-    return sum / float(settings.samples_per_pixel);
+    return render_pixel(tracer, camera, settings, x, y, counters, settings.samples_per_pixel);
+  }
+
+  /// The mean of the pixel's first `samples` samples of a render with these settings: what a
+  /// render stopped when `samples` samples per pixel were done holds.
+  static Color render_pixel(const PathTracer<C>& tracer, const Camera& camera,
+                            const RenderSettings& settings, int x, int y, TraceCounters& counters,
+                            int samples) {
+    std::atomic<std::uint64_t> progress{0};
+    std::uint64_t done = 0;
+    const Color sum = add_samples(tracer, camera, settings, x, y, 0, samples, Color(0.0f), counters,
+                                  progress, done);
+    return sum / float(samples);
   }
 
  private:
@@ -152,32 +253,138 @@ class Renderer {
     std::size_t count;
   };
 
-  // Padded to a cache line so that threads never write to the same line.
+  // Padded to a cache line so that threads never write to the same line. `samples` is written
+  // by its worker alone (a plain store) and read by the progress reports.
   struct alignas(64) PaddedCounters {
     TraceCounters counters;
+    std::atomic<std::uint64_t> samples{0};
   };
 
-  static void render_tile(const PathTracer<C>& tracer, const Camera& camera,
-                          const RenderSettings& settings, const Tile& tile, Film& film,
-                          TraceCounters& counters) {
-    for (int y = tile.y0; y < tile.y1; ++y)
-      for (int x = tile.x0; x < tile.x1; ++x)
-        film.at(x, y) = render_pixel(tracer, camera, settings, x, y, counters);
-  }
+  /// Who renders what and when. Work items are numbered across passes (item i is tile
+  /// i % tiles of pass i / tiles) and taken from one counter, so a worker never needs to know
+  /// where a pass ends; it waits only when its item belongs to a pass not yet released. A pass
+  /// is released when the one before has completed, because a tile's sums carry over.
+  class Schedule {
+   public:
+    Schedule(std::size_t tiles, std::size_t passes) : tiles_(tiles), items_(tiles * passes) {}
 
-  static void report_progress(std::atomic<std::size_t>& tiles_done, std::size_t tile_count,
-                              std::chrono::steady_clock::time_point start,
-                              const ProgressCallback& progress) {
-    std::size_t seen = 0;
-    while (seen < tile_count) {
-      tiles_done.wait(seen, std::memory_order_acquire);
-      seen = tiles_done.load(std::memory_order_acquire);
-      if (progress) {
-        const double elapsed =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        progress(RenderProgress{seen, tile_count, elapsed});
+    /// The next item for a worker, once its pass is released; nullopt when there is nothing
+    /// more to do (all items taken, or the render stopped).
+    std::optional<std::size_t> next() {
+      const std::size_t item = next_item_.fetch_add(1, std::memory_order_relaxed);
+      if (item >= items_) return std::nullopt;
+      const auto pass = static_cast<long long>(item / tiles_);
+      // Acquire: the sums of the pass before, written by other workers, are visible.
+      for (long long released = released_.load(std::memory_order_acquire); released <= pass;
+           released = released_.load(std::memory_order_acquire)) {
+        if (released == kStopped) return std::nullopt;
+        released_.wait(released, std::memory_order_acquire);
+      }
+      return item;
+    }
+    std::size_t tiles() const { return tiles_; }
+
+    /// A worker finished an item. Release: its sums are visible to whoever sees the count.
+    void finished(std::size_t item) {
+      const std::size_t pass_end = (item / tiles_ + 1) * tiles_;
+      if (items_done_.fetch_add(1, std::memory_order_acq_rel) + 1 == pass_end) {
+        // The lock, once per pass, keeps the caller from missing the wake-up between its
+        // check and its wait.
+        const std::lock_guard<std::mutex> lock(mutex_);
+        pass_complete_.notify_all();
       }
     }
+
+    void release(std::size_t pass) {
+      released_.store(static_cast<long long>(pass) + 1, std::memory_order_release);
+      released_.notify_all();
+    }
+    void stop() {
+      released_.store(kStopped, std::memory_order_release);
+      released_.notify_all();
+    }
+
+    /// Whether `pass` completed within `timeout`.
+    bool wait_for_pass(std::size_t pass, std::chrono::milliseconds timeout) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      return pass_complete_.wait_for(lock, timeout, [&] {
+        return items_done_.load(std::memory_order_acquire) >= (pass + 1) * tiles_;
+      });
+    }
+
+   private:
+    static constexpr long long kStopped = LLONG_MIN;
+    const std::size_t tiles_;
+    const std::size_t items_;
+    std::atomic<std::size_t> next_item_{0};
+    std::atomic<std::size_t> items_done_{0};
+    std::atomic<long long> released_{0};  ///< passes released, or kStopped
+    std::mutex mutex_;
+    std::condition_variable pass_complete_;
+  };
+
+  struct StopWorkersOnExit {
+    Schedule& schedule;
+    ~StopWorkersOnExit() { schedule.stop(); }
+  };
+
+  static void work(Schedule& schedule, const TileGrid& grid, const std::vector<int>& ends,
+                   const PathTracer<C>& tracer, const Camera& camera,
+                   const RenderSettings& settings, Film& sums, PaddedCounters& mine) {
+    std::uint64_t samples = 0;
+    for (std::optional<std::size_t> item = schedule.next(); item; item = schedule.next()) {
+      const std::size_t pass = *item / schedule.tiles();
+      const int first = pass == 0 ? 0 : ends[pass - 1];
+      render_tile(tracer, camera, settings, grid.tile(*item % schedule.tiles()), first, ends[pass],
+                  sums, mine, samples);
+      schedule.finished(*item);
+    }
+  }
+
+  /// Adds samples [first, last) of every pixel of the tile to the pixel's sum.
+  static void render_tile(const PathTracer<C>& tracer, const Camera& camera,
+                          const RenderSettings& settings, const Tile& tile, int first, int last,
+                          Film& sums, PaddedCounters& mine, std::uint64_t& samples) {
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x)
+        sums.at(x, y) = add_samples(tracer, camera, settings, x, y, first, last, sums.at(x, y),
+                                    mine.counters, mine.samples, samples);
+  }
+
+  /// `sum` plus samples [first, last) of pixel (x, y), in index order; a sample that is not
+  /// finite is counted as invalid instead. `samples` counts them, published in `progress`. The one
+  /// definition of a pixel's sum, shared by render and render_pixel so that both give the same
+  /// bits. Kept out of line, and out of interprocedural optimisation, so that a program holds one
+  /// copy of it: with -ffp-contract=fast (GCC's default) each copy of the estimator may fuse
+  /// multiplies and adds differently, and two translation units' copies did move pixels by a few
+  /// ulps. A call per pixel and pass costs nothing next to its paths.
+#if defined(__GNUC__) && !defined(__clang__)
+  [[gnu::noipa]]
+#else
+  [[gnu::noinline]]
+#endif
+  static Color
+  add_samples(const PathTracer<C>& tracer, const Camera& camera, const RenderSettings& settings,
+              int x, int y, int first, int last, Color sum, TraceCounters& counters,
+              std::atomic<std::uint64_t>& progress, std::uint64_t& samples) {
+    typename C::sampler sampler;
+    for (int s = first; s < last; ++s) {
+      sampler.start(PixelSample{std::uint32_t(x), std::uint32_t(y), std::uint32_t(s),
+                                std::uint32_t(settings.samples_per_pixel), settings.seed});
+      Vec2 film(float(x) + 0.5f, float(y) + 0.5f);
+      if constexpr (C::antialiasing::enabled)
+        film += C::antialiasing::offset(sampler.next_2d(), settings.antialias_sigma);
+      const Color sample = tracer.radiance(camera.ray_through(film), sampler, counters);
+      if (std::isfinite(sample.x) && std::isfinite(sample.y) && std::isfinite(sample.z))
+        sum += sample;
+      else
+        ++counters.invalid_samples;
+    }
+    // Once per call: a store per sample kept the compiler from optimising across samples
+    // (about 1% more instructions, callgrind).
+    samples += std::uint64_t(last - first);
+    progress.store(samples, std::memory_order_relaxed);
+    return sum;
   }
 };
 

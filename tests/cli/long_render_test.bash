@@ -1,0 +1,234 @@
+#!/usr/bin/env bash
+# glint-render's promises for long renders, the ones that need a shell (signals, job control,
+# ulimit, symbolic links):
+#
+#   long_render_test.bash CASE PROGRAM SCENE SCRATCH
+#
+# CASE is one of the functions below named case_*; it runs PROGRAM on SCENE in the empty
+# directory SCRATCH. No case depends on how fast the machine is: a signal is sent only once
+# the progress on stderr shows that passes have completed, and the render is long enough
+# that it is still running then by a wide margin. Exit status 0 on success, 77 when the case
+# cannot run here (ctest's SKIP_RETURN_CODE), 1 on a failure, with the reason on stderr.
+set -uo pipefail
+case_name=$1 program=$2 scene=$3 scratch=$4
+
+fail() {
+  echo "FAIL ($case_name): $*" >&2
+  [[ -f err.log ]] && { echo "--- stderr of glint-render:" >&2; cat err.log >&2; }
+  exit 1
+}
+
+rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch" || exit 1
+
+# No temporary of any name is left behind.
+no_temporaries() {
+  local left
+  left=$(find . -name '*glint-partial*' ! -type l -print)
+  [[ -z $left ]] || fail "temporaries left behind: $left"
+}
+
+# A PNG whose last chunk is IEND, and a PFM of exactly the size its header promises: complete
+# files, not truncated ones.
+complete_png() {
+  [[ -f $1 && ! -L $1 ]] || fail "$1 is not a regular file"
+  [[ $(tail -c 12 "$1" | od -An -tx1 | tr -d ' \n') == 0000000049454e44ae426082 ]] ||
+    fail "$1 does not end with an IEND chunk"
+}
+complete_pfm() { # FILE WIDTH HEIGHT
+  [[ -f $1 && ! -L $1 ]] || fail "$1 is not a regular file"
+  local header="PF
+$2 $3
+-1.0
+"
+  local size
+  size=$(stat -c %s "$1")
+  ((size == ${#header} + $2 * $3 * 12)) || fail "$1 has $size bytes, not a complete $2x$3 PFM"
+}
+
+# A render of 160x120 pixels at 1024 samples per pixel: passes of 1, 1, 2, 4, ... 32, then 32
+# samples at a time, so the first 10% of the work holds several completed passes and the
+# render still has about 90% of its work ahead when it is interrupted there.
+long_render=(--width 160 --height 120 --spp 1024 --max-depth 3 --threads 2 -o out.png
+             --hdr out.pfm)
+
+# Starts a long render in the background (stderr is a file, so progress comes as a line per
+# tenth) and returns once a progress line shows at least 10% done.
+start_long_render() {
+  # Job control: a background job of a script would otherwise ignore SIGINT, and glint-render
+  # keeps an ignored SIGINT ignored (as nohup and `&` expect).
+  set -m
+  "$program" "$scene" "${long_render[@]}" "$@" 2>err.log &
+  pid=$!
+  set +m
+  until grep -q '^\[ *[1-9][0-9]%\]' err.log; do
+    kill -0 "$pid" 2>/dev/null || { wait "$pid"; fail "glint-render ended (status $?) before 10%"; }
+    sleep 0.05
+  done
+}
+
+# The first signal: the current pass completes, the image of the passes done is written,
+# and the exit status says which signal it was.
+interrupted_once() { # SIGNAL STATUS
+  start_long_render
+  kill -s "$1" "$pid"
+  wait "$pid"
+  local status=$?
+  ((status == $2)) || fail "exit status $status, expected $2"
+  local pattern="^glint-render: stopped by SIG$1: out\.png holds ([0-9]+) of 1024 samples per pixel \(([0-9]+) of 37 passes\)$"
+  local message
+  message=$(tail -n 1 err.log)
+  [[ $message =~ $pattern ]] || fail "last line on stderr is not the stop message: '$message'"
+  local spp=${BASH_REMATCH[1]} passes=${BASH_REMATCH[2]}
+  # At least the passes up to 10% (102 samples: 96 is the end of pass 8) are done, and the
+  # count is the end of a pass: 1, 2, 4, ... 32, then multiples of 32.
+  ((spp >= 96 && spp < 1024 && spp % 32 == 0 && passes == spp / 32 + 5)) ||
+    fail "$spp samples per pixel in $passes passes is not a pass boundary past 10%"
+  grep -q "^glint-render (.*): .* -> out\.png: 160x120, $spp spp," err.log ||
+    fail "the summary line does not give $spp spp"
+  complete_png out.png
+  complete_pfm out.pfm 160 120
+  no_temporaries
+}
+
+case_sigint() { interrupted_once INT 130; }
+case_sigterm() { interrupted_once TERM 143; }
+case_sighup() { interrupted_once HUP 129; }
+
+# A second signal ends the run at once: nothing written, no temporary left. Two different
+# signals, because a second SIGINT sent before the first is delivered would merge with it.
+case_second_signal() {
+  start_long_render
+  kill -s INT "$pid"
+  kill -s TERM "$pid"
+  wait "$pid"
+  local status=$?
+  ((status == 143 || status == 130)) || fail "exit status $status, expected 143 (or 130)"
+  grep -q "a second stop signal: exiting at once" err.log || fail "no message for the second signal"
+  [[ ! -e out.png && ! -e out.pfm ]] || fail "an image was written"
+  no_temporaries
+}
+
+# --quiet keeps the stop message: it says what the file holds.
+case_sigint_quiet() {
+  set -m
+  "$program" "$scene" "${long_render[@]}" --quiet 2>err.log &
+  pid=$!
+  set +m
+  # Nothing is printed before the stop, so wait until the process has used 0.3 s of CPU:
+  # it is rendering then (this scene loads in microseconds), so its handlers are in place and
+  # the first pass, which always completes, has begun.
+  local ticks=$(($(getconf CLK_TCK) * 3 / 10))
+  until (($(awk '{ print $14 + $15 }' "/proc/$pid/stat" 2>/dev/null || echo 0) >= ticks)); do
+    kill -0 "$pid" 2>/dev/null || { wait "$pid"; fail "glint-render ended (status $?) early"; }
+    sleep 0.05
+  done
+  kill -s INT "$pid"
+  wait "$pid"
+  local status=$?
+  ((status == 130)) || fail "exit status $status, expected 130"
+  grep -Eq "^glint-render: stopped by SIGINT: out\.png holds [0-9]+ of 1024 samples per pixel" err.log ||
+    fail "no stop message"
+  [[ $(wc -l <err.log) -eq 1 ]] || fail "--quiet printed more than the stop message"
+  complete_png out.png
+  complete_pfm out.pfm 160 120
+  no_temporaries
+}
+
+# Symbolic links planted at the names an older glint-render used as temporaries, and at the
+# targets themselves: none is written through; the targets become regular files.
+case_planted_symlinks() {
+  echo precious >victim
+  echo also-precious >victim2
+  ln -s victim out.png.glint-partial
+  ln -s victim out.pfm.glint-partial
+  ln -s victim2 out.png
+  "$program" "$scene" -o out.png --hdr out.pfm --spp 2 2>err.log || fail "exit status $?"
+  [[ $(cat victim) == precious && $(cat victim2) == also-precious ]] ||
+    fail "a file behind a planted link was overwritten"
+  [[ $(readlink out.png.glint-partial) == victim && $(readlink out.pfm.glint-partial) == victim ]] ||
+    fail "a planted link was changed"
+  complete_png out.png
+  complete_pfm out.pfm 24 16
+  no_temporaries
+}
+
+# The PFM fails while being written (past `ulimit -f`, after the PNG's temporary was
+# written): neither image is renamed into place, and an older out.png stays as it was.
+case_hdr_fails_while_writing() {
+  echo old >out.png
+  local err status
+  # 2 KiB: the PNG (about 600 bytes) fits, the PFM (4.6 KB) does not. stderr goes to a pipe,
+  # which the limit does not cover.
+  err=$(ulimit -f 2 && "$program" "$scene" -o out.png --hdr out.pfm --spp 2 --quiet 2>&1)
+  status=$?
+  ((status == 1)) || fail "exit status $status, expected 1: $err"
+  [[ $err == *"cannot write out.pfm: File too large"* ]] || fail "unexpected message: $err"
+  [[ $(cat out.png) == old ]] || fail "out.png was replaced although out.pfm failed"
+  [[ ! -e out.pfm ]] || fail "out.pfm exists"
+  no_temporaries
+}
+
+# Outputs that cannot be written are refused before the render: no progress line appears.
+refused_before_render() { # STDERR_PATTERN ARGS...
+  local pattern=$1
+  shift
+  "$program" "$@" 2>err.log
+  local status=$?
+  ((status == 1)) || fail "exit status $status, expected 1"
+  grep -Eq "$pattern" err.log || fail "stderr does not match '$pattern'"
+  ! grep -q elapsed err.log || fail "the render started before the output was refused"
+  no_temporaries
+}
+
+case_hdr_is_directory() {
+  mkdir out.pfm
+  refused_before_render "^glint-render: error: cannot write out\.pfm: it is a directory$" \
+    "$scene" -o out.png --hdr out.pfm
+  [[ ! -e out.png && -d out.pfm ]] || fail "out.png was written or out.pfm changed"
+}
+
+case_output_is_directory() {
+  mkdir out.png
+  refused_before_render "^glint-render: error: cannot write out\.png: it is a directory$" \
+    "$scene" -o out.png
+  [[ -d out.png ]] || fail "out.png changed"
+}
+
+case_read_only_directory() {
+  # Permissions do not bind root, which could write there after all.
+  ((EUID != 0)) || { echo "skipped: running as root"; exit 77; }
+  mkdir ro && chmod 555 ro
+  refused_before_render "cannot write ro/out\.png: directory ro is not writable" \
+    "$scene" -o ro/out.png
+  chmod 755 ro
+  [[ -z $(ls ro) ]] || fail "something was written in ro"
+}
+
+# A scene file whose name ends in .png is its own default output: refused, left intact,
+# however its name is spelt.
+case_scene_is_output() {
+  cp "$scene" x.png
+  refused_before_render "^glint-render: error: cannot write x\.png: it is the scene file x\.png$" \
+    x.png
+  refused_before_render "^glint-render: error: cannot write x\.png: it is the scene file \./x\.png$" \
+    ./x.png --hdr x.pfm
+  cmp -s "$scene" x.png || fail "the scene file was changed"
+}
+
+# Thread stacks that cannot be mapped (each as large as `ulimit -s`, within `ulimit -v`): a
+# clear error before any rendering, not one after it.
+case_threads_fail() {
+  local err status
+  err=$(ulimit -s 1000000 && ulimit -v 2500000 &&
+    "$program" "$scene" -o out.png --threads 64 --width 256 --height 256 2>&1)
+  status=$?
+  ((status == 1)) || fail "exit status $status, expected 1: $err"
+  [[ $err =~ "glint-render: error: cannot start 64 rendering threads (started "[0-9]+"): " ]] ||
+    fail "unexpected message: $err"
+  [[ $err != *elapsed* ]] || fail "the render started: $err"
+  [[ ! -e out.png ]] || fail "out.png was written"
+}
+
+declare -F "case_$case_name" >/dev/null || { echo "no case '$case_name'" >&2; exit 2; }
+"case_$case_name"
+echo "ok: $case_name"

@@ -1,0 +1,231 @@
+// Progressive passes: the schedule of pass_ends, the finished image bit for bit the one-shot
+// render_pixel mean, a stopped render bit for bit the mean of the samples of its completed
+// passes, and neither depending on the thread count, the tile size or where a stop comes from.
+
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+#include "glint/render/renderer.hpp"
+#include "glint/variants.hpp"
+
+namespace {
+
+glint::Scene small_scene() {
+  glint::SceneDescription d;
+  d.source = "passes";
+  d.camera.position = {0.0f, 0.0f, 10.0f};
+  glint::SphereDescription sphere;
+  sphere.radius = 3.0f;
+  d.spheres.push_back(sphere);
+  glint::SphereDescription glass;
+  glass.center = {2.0f, 1.0f, 3.0f};
+  glass.material.diffuse = 0.0f;
+  glass.material.transparent = 1.0f;
+  d.spheres.push_back(glass);
+  d.lights.push_back({{5.0f, 5.0f, 10.0f}, 100.0f, glint::Color(1.0f), 1});
+  return glint::Scene::build(d);
+}
+
+glint::RenderSettings small_settings(int spp, int max_pass, int threads, int tile) {
+  glint::RenderSettings settings;
+  settings.width = 19;
+  settings.height = 13;
+  settings.samples_per_pixel = spp;
+  settings.max_pass_samples = max_pass;
+  settings.max_depth = 4;
+  settings.threads = threads;
+  settings.tile_size = tile;
+  settings.seed = 3;
+  return settings;
+}
+
+/// Whether two films hold the same bits (== would call -0 and 0 equal, and NaN unequal).
+bool same_bits(const glint::Film& a, const glint::Film& b) {
+  return a.width() == b.width() && a.height() == b.height() &&
+         std::memcmp(a.pixels().data(), b.pixels().data(),
+                     a.pixels().size() * sizeof(glint::Color)) == 0;
+}
+
+/// The image of each pixel's first `samples` samples, summed in one go by render_pixel.
+template <typename V>
+glint::Film one_shot(const glint::Scene& scene, const glint::RenderSettings& settings,
+                     int samples) {
+  const glint::Camera camera(scene.camera(), settings.width, settings.height);
+  const glint::PathTracer<V> tracer(scene, settings.max_depth);
+  glint::TraceCounters counters;
+  glint::Film film(settings.width, settings.height);
+  for (int y = 0; y < settings.height; ++y)
+    for (int x = 0; x < settings.width; ++x)
+      film.at(x, y) =
+          glint::Renderer<V>::render_pixel(tracer, camera, settings, x, y, counters, samples);
+  return film;
+}
+
+/// A render stopped by the pass callback once `passes` passes are done.
+template <typename V>
+glint::RenderResult stopped_after(const glint::Scene& scene, const glint::RenderSettings& settings,
+                                  int passes) {
+  glint::RenderControl control;
+  control.pass_done = [&](const glint::PassReport& r) { return r.passes_done < passes; };
+  return glint::Renderer<V>::render(scene, settings, control);
+}
+
+}  // namespace
+
+TEST_CASE("pass_ends: one sample, then doubling up to the cap, ending at the spp", "[passes]") {
+  using glint::pass_ends;
+  CHECK(pass_ends(1, 32) == std::vector<int>{1});
+  CHECK(pass_ends(2, 32) == std::vector<int>{1, 2});
+  CHECK(pass_ends(5, 32) == std::vector<int>{1, 2, 4, 5});
+  CHECK(pass_ends(16, 32) == std::vector<int>{1, 2, 4, 8, 16});
+  CHECK(pass_ends(13, 4) == std::vector<int>{1, 2, 4, 8, 12, 13});
+  CHECK(pass_ends(100, 32) == std::vector<int>{1, 2, 4, 8, 16, 32, 64, 96, 100});
+  CHECK(pass_ends(3, 1) == std::vector<int>{1, 2, 3});
+  for (const int spp : {1, 7, 1000, glint::limits::max_samples_per_pixel}) {
+    for (const int cap : {1, 3, 32, glint::limits::max_samples_per_pixel}) {
+      INFO(spp << " spp, at most " << cap << " a pass");
+      const std::vector<int> ends = pass_ends(spp, cap);
+      REQUIRE(!ends.empty());
+      CHECK(ends.front() == 1);
+      CHECK(ends.back() == spp);
+      int previous = 0;
+      std::size_t bad_steps = 0;  // counted, not checked one by one: there can be a million
+      for (const int end : ends) {
+        if (end <= previous || end - previous > std::max(1, std::min(cap, previous))) ++bad_steps;
+        previous = end;
+      }
+      CHECK(bad_steps == 0);
+    }
+  }
+}
+
+TEST_CASE("max_pass_samples is checked", "[passes]") {
+  glint::RenderSettings settings = small_settings(4, 0, 1, 8);
+  CHECK_THROWS_AS(glint::validate(settings), glint::SettingsError);
+  settings.max_pass_samples = glint::limits::max_samples_per_pixel + 1;
+  CHECK_THROWS_AS(glint::validate(settings), glint::SettingsError);
+  settings.max_pass_samples = 1;
+  CHECK_NOTHROW(glint::validate(settings));
+}
+
+TEMPLATE_TEST_CASE("all passes give the one-shot image bit for bit", "[passes]",
+                   glint::variants::report, glint::variants::fast) {
+  const glint::Scene scene = small_scene();
+  const int threads = GENERATE(1, 2, 5);
+  const int tile = GENERATE(4, 16);
+  const int max_pass = GENERATE(1, 4, 32);
+  INFO(threads << " threads, tiles of " << tile << ", at most " << max_pass << " a pass");
+  const glint::RenderSettings settings = small_settings(13, max_pass, threads, tile);
+
+  const glint::RenderResult result = glint::Renderer<TestType>::render(scene, settings);
+  CHECK(result.complete());
+  CHECK(result.samples_per_pixel == 13);
+  CHECK(result.passes_done == int(glint::pass_ends(13, max_pass).size()));
+  CHECK(result.pass_count == result.passes_done);
+  CHECK(result.stats.samples == 19u * 13u * 13u);
+  CHECK(same_bits(result.film, one_shot<TestType>(scene, settings, 13)));
+}
+
+TEMPLATE_TEST_CASE("a render stopped after k passes holds exactly those passes' samples",
+                   "[passes]", glint::variants::report, glint::variants::fast) {
+  const glint::Scene scene = small_scene();
+  const glint::RenderSettings base = small_settings(13, 4, 1, 8);
+  const std::vector<int> ends = glint::pass_ends(13, 4);  // 1, 2, 4, 8, 12, 13
+  const int passes = GENERATE(1, 2, 3, 5);
+  const int samples = ends[std::size_t(passes) - 1];
+  INFO("stopped after pass " << passes << ", " << samples << " samples per pixel");
+  const glint::Film expected = one_shot<TestType>(scene, base, samples);
+
+  for (const int threads : {1, 2, 5}) {
+    INFO(threads << " threads");
+    glint::RenderSettings settings = base;
+    settings.threads = threads;
+    const glint::RenderResult result = stopped_after<TestType>(scene, settings, passes);
+    CHECK_FALSE(result.complete());
+    CHECK(result.passes_done == passes);
+    CHECK(result.pass_count == 6);
+    CHECK(result.samples_per_pixel == samples);
+    CHECK(result.stats.samples == 19u * 13u * std::uint64_t(samples));
+    CHECK(same_bits(result.film, expected));
+  }
+}
+
+TEST_CASE("the pass callback sees each pass's image, the one a stop there returns", "[passes]") {
+  using V = glint::variants::report;
+  const glint::Scene scene = small_scene();
+  const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
+  const std::vector<int> ends = glint::pass_ends(13, 4);
+  std::vector<glint::Film> images;
+  std::vector<int> samples;
+  glint::RenderControl control;
+  control.pass_done = [&](const glint::PassReport& r) {
+    CHECK(r.passes_done == int(images.size()) + 1);
+    CHECK(r.pass_count == int(ends.size()));
+    images.push_back(r.image());
+    samples.push_back(r.samples_per_pixel);
+    return true;
+  };
+  const glint::RenderResult result = glint::Renderer<V>::render(scene, settings, control);
+  CHECK(samples == ends);
+  REQUIRE(images.size() == ends.size());
+  CHECK(same_bits(images.back(), result.film));
+  for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
+    INFO("pass " << k + 1);
+    CHECK(same_bits(images[k], stopped_after<V>(scene, settings, int(k) + 1).film));
+  }
+}
+
+TEST_CASE("a stop request ends the render after the current pass", "[passes]") {
+  using V = glint::variants::report;
+  const glint::Scene scene = small_scene();
+  const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
+  std::atomic<bool> stop{false};
+
+  SECTION("requested before the render: nothing is rendered") {
+    stop = true;
+    const glint::RenderResult result =
+        glint::Renderer<V>::render(scene, settings, glint::RenderControl{{}, {}, &stop});
+    CHECK(result.passes_done == 0);
+    CHECK(result.samples_per_pixel == 0);
+    CHECK(result.stats.samples == 0);
+    CHECK(result.film.width() == 19);
+    for (const glint::Color& c : result.film.pixels())
+      CHECK(c == glint::Color(0.0f));
+  }
+  SECTION("requested while rendering, as a signal handler would: the current pass completes") {
+    // Set from the progress callback (on the calling thread, while workers render): whichever
+    // pass is running then completes, and no other starts.
+    int passes_at_request = -1;
+    glint::RenderControl control;
+    control.stop = &stop;
+    control.progress = [&](const glint::RenderProgress& p) {
+      if (passes_at_request < 0 && p.passes_done >= 2) {
+        passes_at_request = p.passes_done;
+        stop = true;
+      }
+    };
+    const glint::RenderResult result = glint::Renderer<V>::render(scene, settings, control);
+    REQUIRE(passes_at_request >= 2);
+    CHECK(result.passes_done >= passes_at_request);
+    CHECK(result.passes_done <= passes_at_request + 1);
+    CHECK(result.samples_per_pixel == glint::pass_ends(13, 4)[std::size_t(result.passes_done) - 1]);
+    CHECK(same_bits(result.film, one_shot<V>(scene, settings, result.samples_per_pixel)));
+  }
+}
+
+TEST_CASE("a callback that throws ends the render and reaches the caller", "[passes]") {
+  using V = glint::variants::report;
+  const glint::Scene scene = small_scene();
+  const glint::RenderSettings settings = small_settings(13, 4, 5, 4);
+  glint::RenderControl control;
+  control.pass_done = [](const glint::PassReport& r) -> bool {
+    if (r.passes_done == 2) throw std::runtime_error("enough");
+    return true;
+  };
+  // The workers waiting for pass 3 must be told to stop, or this would never return.
+  CHECK_THROWS_WITH(glint::Renderer<V>::render(scene, settings, control), "enough");
+}
