@@ -594,6 +594,23 @@ TEST_CASE("scene reader: files", "[scene_reader][file]") {
     CHECK_THROWS_WITH(glint::read_scene_file(path),
                       StartsWith(path.string() + ":3: error: missing required key 'intensity'"));
   }
+  SECTION("binary input stops at its first NUL byte, with the line it is on") {
+    const fs::path path = dir / "binary.scene";
+    {
+      // Valid lines across more than one read buffer, then a NUL and much more after it.
+      std::ofstream out(path, std::ios::binary);
+      for (int i = 0; i < 3000; ++i)
+        out << "sphere center=0,0," << i * 3 << " radius=1   # padding padding padding\n";
+      out << "sphere center=0,0,0 radius=1" << '\0' << std::string(1 << 20, 'x') << "\n";
+    }
+    CHECK_THROWS_WITH(glint::read_scene_file(path),
+                      StartsWith(path.string() + ":3001: error: line contains a NUL byte"));
+  }
+  SECTION("/dev/zero is refused on its first line, not after a GiB") {
+    if (fs::exists("/dev/zero"))
+      CHECK_THROWS_WITH(glint::read_scene_file("/dev/zero"),
+                        StartsWith("/dev/zero:1: error: line contains a NUL byte"));
+  }
   SECTION("the complete example of the README's scene format") {
     // Keeps the documentation honest: the block after the marker must parse as documented.
     std::ifstream in(fs::path(GLINT_SOURCE_DIR) / "README.md");

@@ -12,6 +12,7 @@
 // recursion, numbers go through std::from_chars (locale-independent, whole token consumed)
 // and every quoted piece of input in a message is escaped and shortened.
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <charconv>
@@ -20,6 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -515,6 +517,16 @@ inline SceneDescription read_scene_file(const std::filesystem::path& path) {
   char buffer[1 << 16];
   while (true) {
     const std::size_t got = std::fread(buffer, 1, sizeof buffer, file.get());
+    // Binary input (an image, /dev/zero) is refused at its first NUL byte, with the line the
+    // parser would name, rather than after reading up to the size limit.
+    if (const void* nul = std::memchr(buffer, '\0', got)) {
+      const auto in_buffer = static_cast<std::size_t>(static_cast<const char*>(nul) - buffer);
+      const auto lines_before =
+          std::count(text.begin(), text.end(), '\n') + std::count(buffer, buffer + in_buffer, '\n');
+      throw SceneError(source,
+                       static_cast<int>(std::min<std::ptrdiff_t>(lines_before + 1, INT_MAX)),
+                       "line contains a NUL byte (is this a text file?)");
+    }
     if (got > 0) {
       if (text.size() + got > kMaxSceneFileSize)
         fail(detail::concat(
