@@ -33,6 +33,7 @@
 #include "glint/render/camera.hpp"
 #include "glint/render/path_tracer.hpp"
 #include "glint/render/render_settings.hpp"
+#include "glint/render/work_estimate.hpp"
 #include "glint/scene/scene.hpp"
 
 namespace glint {
@@ -118,9 +119,10 @@ class Renderer {
   static constexpr std::chrono::milliseconds progress_interval{100};
 
   /// Renders with the given settings; `progress`, if set, is called from the calling thread
-  /// (never from a worker). Throws SettingsError for settings outside the limits,
-  /// UnsupportedSceneError for a scene this variant cannot render, and Error when the worker
-  /// threads cannot be started (before any rendering).
+  /// (never from a worker). Throws SettingsError for settings outside the limits or work
+  /// beyond limits::max_tree_rays_per_sample (check_work), UnsupportedSceneError for a scene this
+  /// variant cannot render, and Error when the worker threads cannot be started (before any
+  /// rendering).
   static RenderResult render(const Scene& scene, const RenderSettings& settings,
                              const ProgressCallback& progress = {}) {
     return render(scene, settings, RenderControl{progress, {}, nullptr});
@@ -132,6 +134,7 @@ class Renderer {
                              const RenderControl& control) {
     validate(settings);
     check_supported<C>(scene);
+    check_work<C>(scene, settings.max_depth);
     const auto start = std::chrono::steady_clock::now();
     const auto elapsed = [&] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -30,6 +30,11 @@ inline constexpr int max_depth = 1024;
 inline constexpr float max_antialias_sigma = 100.0f;  ///< pixels
 inline constexpr int max_threads = 4096;
 inline constexpr int max_tile_size = 1024;
+/// The most rays one camera sample of the report's tree model may trace in the worst case
+/// (render/work_estimate.hpp). At the report's 800x800 pixels and 1000 samples even 16 rays a
+/// sample are 10^10 rays; 2^20 lets every scene of the report through at its own depth and
+/// refuses the exponential cases (mirror-and-glass spheres 20 bounces deep).
+inline constexpr double max_tree_rays_per_sample = 1 << 20;
 }  // namespace limits
 
 /// An image's size, samples per pixel and depth: what a scene file's `image` statement sets,
