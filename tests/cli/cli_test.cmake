@@ -89,17 +89,20 @@ glint_cli_progress_test(progress-default-variant glint-render [a-z_]+
 # Long renders (tests/cli/long_render_test.bash): the first SIGINT, SIGTERM or SIGHUP writes
 # the image of the completed passes, a second one exits at once; planted symbolic links are
 # never followed; all outputs or none; outputs refused before rendering; threads that cannot
-# start. Status 77: the case cannot run here (a read-only directory does not stop root).
+# start; checkpoints resumed to the uninterrupted bytes (after SIGINT, or SIGKILL after a
+# checkpoint between passes), checkpoints of other renders refused; --time-limit. Status 77:
+# the case cannot run here (a read-only directory does not stop root).
 find_program(GLINT_BASH bash)
 if(GLINT_BASH)
   foreach(case sigint sigterm sighup second_signal sigint_quiet planted_symlinks
           hdr_fails_while_writing hdr_is_directory output_is_directory read_only_directory
-          scene_is_output threads_fail)
+          scene_is_output threads_fail checkpoint_resume checkpoint_after_kill resume_refused
+          time_limit_zero)
     string(REPLACE "_" "-" name ${case})
     add_test(NAME "cli: ${name}"
              COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash ${case}
                      $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
-                     ${PROJECT_BINARY_DIR}/cli-test/${name})
+                     ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli SKIP_RETURN_CODE 77)
   endforeach()
 endif()
