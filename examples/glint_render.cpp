@@ -341,7 +341,17 @@ int main(int argc, char** argv) {
                                    : std::filesystem::path(options.scene).stem().string() + ".png";
     check_output(output, options.scene);
     if (options.hdr) check_output(*options.hdr, options.scene);
-    if (options.checkpoint) check_output(*options.checkpoint, options.scene);
+    if (options.checkpoint) {
+      check_output(*options.checkpoint, options.scene);
+      // The files are renamed into place together: one would silently replace the other.
+      const auto resolved = [](const std::string& path) {
+        return std::filesystem::weakly_canonical(std::filesystem::absolute(path));
+      };
+      for (const std::optional<std::string>& image : {std::optional(output), options.hdr})
+        if (image && resolved(*image) == resolved(*options.checkpoint))
+          throw glint::ImageWriteError("cannot write the checkpoint " + *options.checkpoint +
+                                       ": it is also the image " + *image);
+    }
 
     const glint::Scene scene = glint::Scene::build(glint::read_scene_file(options.scene));
     glint::check_supported<Variant>(scene);

@@ -58,6 +58,16 @@ glint_cli_test(hdr-not-pfm STATUS 2 STDERR "--hdr writes a linear float PFM: the
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.exr OUTPUT out.png)
 glint_cli_test(renders STATUS 0 STDERR "Mrays/s" EXPECT_OUTPUT OUTPUT out.png
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --spp 2)
+glint_cli_test(bad-time-limit STATUS 2 STDERR "--time-limit expects seconds from 0 to 1e9, got '-1'"
+               ARGS ${glint_cli_scenes}/tiny.scene --time-limit -1)
+glint_cli_test(bad-checkpoint-interval STATUS 2
+               STDERR "--checkpoint-interval expects seconds from 0 to 1e9, got '1m'"
+               ARGS ${glint_cli_scenes}/tiny.scene --checkpoint-interval 1m)
+glint_cli_test(checkpoint-is-output STATUS 1
+               STDERR "cannot write the checkpoint ./out.png: it is also the image out.png"
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --checkpoint ./out.png OUTPUT out.png)
+glint_cli_test(missing-checkpoint STATUS 1 STDERR "cannot resume from no-such.ck: No such file"
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --resume no-such.ck OUTPUT out.png)
 # Sizes beyond the pixel limit are option errors: refused before the scene is read (a missing
 # scene would be status 1) when the options alone exceed it, after when the scene's size does.
 glint_cli_test(pixel-limit STATUS 2 STDERR "--width 32768 --height 4096 exceeds 67108864 pixels"
