@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <climits>
 #include <csignal>
@@ -15,12 +16,14 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "glint/glint.hpp"
+#include "glint/io/checkpoint.hpp"
 #include "progress_printer.hpp"
 
 #ifndef GLINT_VARIANT
@@ -50,6 +53,19 @@ options:
                       not depend on it
   --seed N            random seed (default 0): same scene, settings and seed give the
                       same image bit for bit
+  --checkpoint FILE   save what --resume needs to continue the render to FILE: after a
+                      pass, every --checkpoint-interval seconds, and at the end (finished,
+                      stopped by a signal or by --time-limit)
+  --checkpoint-interval SECONDS
+                      least time between two checkpoints while rendering (default 60;
+                      0: after every pass)
+  --resume FILE       continue the render saved in FILE (same scene file, variant and
+                      image options, seed included): the image is then exactly the one
+                      an uninterrupted render gives; a checkpoint of another render is
+                      refused (status 1) before any rendering
+  --time-limit SECONDS
+                      stop after the pass that ends past SECONDS of rendering and write
+                      the image of the passes done (status 0, saying what it holds)
   --quiet             no progress or summary on stderr
   -h, --help          this help
 
@@ -59,7 +75,8 @@ first SIGINT, SIGTERM or SIGHUP stops after the current pass and writes the imag
 passes done, saying how many samples per pixel it holds; a second one exits at once.
 Outputs are checked before rendering and written to new temporary files beside them, renamed
 into place only when all were written.
-Exit status: 0 on success, 1 for a bad scene or an unwritable output, 2 for bad options,
+Exit status: 0 on success (--time-limit included), 1 for a bad scene, an unwritable output or
+a checkpoint that cannot be resumed, 2 for bad options,
 3 for a valid scene that this variant cannot render (a shading kind it was built without),
 128 + the signal's number when a signal stopped the render (130 for SIGINT).
 )";
@@ -70,6 +87,9 @@ struct Options {
   std::optional<std::string> hdr;
   std::optional<int> spp, max_depth, width, height, threads;
   std::uint64_t seed = 0;
+  std::optional<std::string> checkpoint, resume;
+  double checkpoint_interval = 60.0;
+  std::optional<double> time_limit;
   bool quiet = false;
 };
 
@@ -84,6 +104,16 @@ Int parse_integer(std::string_view option, std::string_view text, Int low, Int h
   if (error != std::errc() || end != text.data() + text.size() || value < low || value > high)
     throw UsageError{std::string(option) + " expects an integer in [" + std::to_string(low) + ", " +
                      std::to_string(high) + "], got '" + std::string(text) + "'"};
+  return value;
+}
+
+/// A number of seconds: a decimal number from 0 to about 30 years.
+double parse_seconds(std::string_view option, std::string_view text) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !(value >= 0.0) || value > 1e9)
+    throw UsageError{std::string(option) + " expects seconds from 0 to 1e9, got '" +
+                     std::string(text) + "'"};
   return value;
 }
 
@@ -133,6 +163,14 @@ Options parse_options(int argc, char** argv) {
       options.threads = parse_integer(arg, value(), 1, glint::limits::max_threads);
     } else if (arg == "--seed") {
       options.seed = parse_integer<std::uint64_t>(arg, value(), 0, UINT64_MAX);
+    } else if (arg == "--checkpoint") {
+      options.checkpoint = std::string(value());
+    } else if (arg == "--checkpoint-interval") {
+      options.checkpoint_interval = parse_seconds(arg, value());
+    } else if (arg == "--resume") {
+      options.resume = std::string(value());
+    } else if (arg == "--time-limit") {
+      options.time_limit = parse_seconds(arg, value());
     } else if (arg == "--quiet" || arg == "-q") {
       options.quiet = true;
     } else if (arg.size() > 1 && arg[0] == '-') {
@@ -162,8 +200,8 @@ constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
 // written with the signals blocked, so that the handler reads them whole.
 static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free);
 std::atomic<bool> stop_requested{false};
-std::atomic<int> stop_signal{0};  ///< the first stop signal received, or 0
-constexpr int kMaxTemporaries = 2;
+std::atomic<int> stop_signal{0};    ///< the first stop signal received, or 0
+constexpr int kMaxTemporaries = 3;  // the PNG, the PFM and the checkpoint
 char temporaries[kMaxTemporaries][PATH_MAX];
 std::atomic<int> temporary_count{0};
 
@@ -244,13 +282,9 @@ void check_output(const std::string& output, const std::string& scene) {
     throw glint::ImageWriteError("cannot write " + output + ": it is the scene file " + scene);
 }
 
-/// Writes every output to a new temporary file, then renames them all into place only when
-/// all were written; on any failure, or a second signal, no temporary is left.
-void write_outputs(const glint::Film& film, const std::string& png,
-                   const std::optional<std::string>& pfm) {
-  std::vector<glint::FileContents> files{{png, glint::encode_png(film)}};
-  if (pfm) files.push_back({*pfm, glint::encode_pfm(film)});
-
+/// Writes every file to a new temporary file, then renames them all into place only when all
+/// were written; on any failure, or a second signal, no temporary is left.
+void write_staged(const std::vector<glint::FileContents>& files) {
   const ForgetTemporaries forget;
   std::vector<glint::StagedFile> staged;
   staged.reserve(files.size());
@@ -270,6 +304,20 @@ void write_outputs(const glint::Film& film, const std::string& png,
   const BlockStopSignals block;
   for (glint::StagedFile& file : staged)
     file.commit();
+}
+
+/// The hash of the scene file's bytes that a checkpoint records: the scene as written, so that
+/// any edit, even one that renders the same, makes a checkpoint another scene's.
+std::uint64_t scene_file_hash(const std::string& path) {
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                             &std::fclose);
+  if (!file) throw glint::Error("cannot read " + path + ": " + std::strerror(errno));
+  std::uint64_t hash = glint::fnv1a(nullptr, 0);
+  std::vector<char> buffer(1 << 16);
+  for (std::size_t read; (read = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0;)
+    hash = glint::fnv1a(buffer.data(), read, hash);
+  if (std::ferror(file.get())) throw glint::Error("cannot read " + path);
+  return hash;
 }
 
 [[noreturn]] void usage_error(const std::string& message) {
@@ -293,6 +341,17 @@ int main(int argc, char** argv) {
                                    : std::filesystem::path(options.scene).stem().string() + ".png";
     check_output(output, options.scene);
     if (options.hdr) check_output(*options.hdr, options.scene);
+    if (options.checkpoint) {
+      check_output(*options.checkpoint, options.scene);
+      // The files are renamed into place together: one would silently replace the other.
+      const auto resolved = [](const std::string& path) {
+        return std::filesystem::weakly_canonical(std::filesystem::absolute(path));
+      };
+      for (const std::optional<std::string>& image : {std::optional(output), options.hdr})
+        if (image && resolved(*image) == resolved(*options.checkpoint))
+          throw glint::ImageWriteError("cannot write the checkpoint " + *options.checkpoint +
+                                       ": it is also the image " + *image);
+    }
 
     const glint::Scene scene = glint::Scene::build(glint::read_scene_file(options.scene));
     glint::check_supported<Variant>(scene);
@@ -308,16 +367,69 @@ int main(int argc, char** argv) {
     if (const std::string problem = glint::image_settings_problem(settings); !problem.empty())
       usage_error("the options with " + options.scene + "'s image settings: " + problem);
 
-    const glint::RenderResult result = glint::Renderer<Variant>::render(
-        scene, settings,
-        glint::RenderControl{glint::cli::ProgressPrinter(!options.quiet), {}, &stop_requested});
+    glint::CheckpointKey key;
+    if (options.checkpoint || options.resume)
+      key = glint::CheckpointKey::of(scene_file_hash(options.scene), kVariantName, settings);
+    std::optional<glint::Checkpoint> resumed;
+    if (options.resume) {
+      resumed = glint::read_checkpoint(*options.resume);
+      glint::check_checkpoint_matches(*resumed, key, *options.resume);
+    }
+
+    glint::RenderControl control{glint::cli::ProgressPrinter(!options.quiet), {}, &stop_requested};
+    glint::RenderStart start;
+    // The state of the last completed pass, for the checkpoint at the end: kept by the pass
+    // callback, which sees every pass, whatever stops the render after it.
+    glint::Film last_sums;
+    int last_passes = 0, last_spp = 0;
+    if (resumed) {
+      start = {&resumed->sums, resumed->passes_done};
+      last_sums = resumed->sums;
+      last_passes = resumed->passes_done;
+      last_spp = resumed->samples_per_pixel_done;
+    }
+    bool time_is_up = false;
+    double last_checkpoint = 0.0;
+    control.pass_done = [&](const glint::PassReport& pass) {
+      if (options.checkpoint) {
+        last_sums = pass.sums;
+        last_passes = pass.passes_done;
+        last_spp = pass.samples_per_pixel;
+      }
+      const bool last = pass.passes_done == pass.pass_count;
+      if (options.time_limit && pass.elapsed_seconds >= *options.time_limit && !last) {
+        time_is_up = true;
+        return false;
+      }
+      // The last pass's checkpoint is written with the images.
+      if (options.checkpoint && !last &&
+          pass.elapsed_seconds - last_checkpoint >= options.checkpoint_interval) {
+        try {
+          write_staged(
+              {{*options.checkpoint, glint::encode_checkpoint(key, pass.passes_done,
+                                                              pass.samples_per_pixel, pass.sums)}});
+        } catch (const glint::ImageWriteError& error) {
+          // Hours of rendering are worth more than one checkpoint: the next one may succeed.
+          std::fprintf(stderr, "\nglint-render: warning: no checkpoint: %s\n", error.what());
+        }
+        last_checkpoint = pass.elapsed_seconds;
+      }
+      return true;
+    };
+    const glint::RenderResult result =
+        glint::Renderer<Variant>::render(scene, settings, control, start);
     const int signal = stop_signal.load();
     if (result.samples_per_pixel == 0) {
       std::fprintf(stderr, "glint-render: stopped by %s before a pass completed: nothing written\n",
                    signal_name(signal));
       return 128 + signal;
     }
-    write_outputs(result.film, output, options.hdr);
+    std::vector<glint::FileContents> files{{output, glint::encode_png(result.film)}};
+    if (options.hdr) files.push_back({*options.hdr, glint::encode_pfm(result.film)});
+    if (options.checkpoint)
+      files.push_back(
+          {*options.checkpoint, glint::encode_checkpoint(key, last_passes, last_spp, last_sums)});
+    write_staged(files);
 
     if (!options.quiet) {
       const glint::RenderStats& stats = result.stats;
@@ -332,6 +444,10 @@ int main(int argc, char** argv) {
     if (result.stats.invalid_samples > 0)
       std::fprintf(stderr, "glint-render: warning: %llu samples were NaN or infinite and dropped\n",
                    static_cast<unsigned long long>(result.stats.invalid_samples));
+    if (options.checkpoint && !result.complete())
+      std::fprintf(stderr,
+                   "glint-render: %s holds the render so far: continue it with --resume %s\n",
+                   options.checkpoint->c_str(), options.checkpoint->c_str());
     if (signal != 0) {
       std::fprintf(stderr,
                    "glint-render: stopped by %s: %s holds %d of %d samples per pixel (%d of %d "
@@ -340,6 +456,12 @@ int main(int argc, char** argv) {
                    settings.samples_per_pixel, result.passes_done, result.pass_count);
       return 128 + signal;
     }
+    if (time_is_up)
+      std::fprintf(stderr,
+                   "glint-render: time limit of %g s reached: %s holds %d of %d samples per pixel "
+                   "(%d of %d passes)\n",
+                   *options.time_limit, output.c_str(), result.samples_per_pixel,
+                   settings.samples_per_pixel, result.passes_done, result.pass_count);
     return 0;
   } catch (const glint::UnsupportedSceneError& error) {
     std::cerr << error.what() << "\n";

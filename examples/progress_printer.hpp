@@ -42,7 +42,12 @@ class ProgressPrinter {
     }
     last_print_ = p.elapsed_seconds;
     std::string eta = "--";
-    if (fraction > 0.0) eta = format_seconds(p.elapsed_seconds * (1.0 - fraction) / fraction);
+    // From this run's share of the work: a resumed render's earlier samples took no time here.
+    const std::uint64_t total_here = p.samples_total - p.samples_at_start;
+    const double fraction_here =
+        total_here ? double(p.samples_done - p.samples_at_start) / double(total_here) : 1.0;
+    if (fraction_here > 0.0)
+      eta = format_seconds(p.elapsed_seconds * (1.0 - fraction_here) / fraction_here);
     std::fprintf(stderr, "%s[%3d%%] %s elapsed, ETA %s   %s", terminal_ ? "\r" : "",
                  int(fraction * 100.0), format_seconds(p.elapsed_seconds).c_str(), eta.c_str(),
                  terminal_ && !done ? "" : "\n");

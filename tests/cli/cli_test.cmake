@@ -58,6 +58,16 @@ glint_cli_test(hdr-not-pfm STATUS 2 STDERR "--hdr writes a linear float PFM: the
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.exr OUTPUT out.png)
 glint_cli_test(renders STATUS 0 STDERR "Mrays/s" EXPECT_OUTPUT OUTPUT out.png
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --spp 2)
+glint_cli_test(bad-time-limit STATUS 2 STDERR "--time-limit expects seconds from 0 to 1e9, got '-1'"
+               ARGS ${glint_cli_scenes}/tiny.scene --time-limit -1)
+glint_cli_test(bad-checkpoint-interval STATUS 2
+               STDERR "--checkpoint-interval expects seconds from 0 to 1e9, got '1m'"
+               ARGS ${glint_cli_scenes}/tiny.scene --checkpoint-interval 1m)
+glint_cli_test(checkpoint-is-output STATUS 1
+               STDERR "cannot write the checkpoint ./out.png: it is also the image out.png"
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --checkpoint ./out.png OUTPUT out.png)
+glint_cli_test(missing-checkpoint STATUS 1 STDERR "cannot resume from no-such.ck: No such file"
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --resume no-such.ck OUTPUT out.png)
 # Sizes beyond the pixel limit are option errors: refused before the scene is read (a missing
 # scene would be status 1) when the options alone exceed it, after when the scene's size does.
 glint_cli_test(pixel-limit STATUS 2 STDERR "--width 32768 --height 4096 exceeds 67108864 pixels"
@@ -89,17 +99,20 @@ glint_cli_progress_test(progress-default-variant glint-render [a-z_]+
 # Long renders (tests/cli/long_render_test.bash): the first SIGINT, SIGTERM or SIGHUP writes
 # the image of the completed passes, a second one exits at once; planted symbolic links are
 # never followed; all outputs or none; outputs refused before rendering; threads that cannot
-# start. Status 77: the case cannot run here (a read-only directory does not stop root).
+# start; checkpoints resumed to the uninterrupted bytes (after SIGINT, or SIGKILL after a
+# checkpoint between passes), checkpoints of other renders refused; --time-limit. Status 77:
+# the case cannot run here (a read-only directory does not stop root).
 find_program(GLINT_BASH bash)
 if(GLINT_BASH)
   foreach(case sigint sigterm sighup second_signal sigint_quiet planted_symlinks
           hdr_fails_while_writing hdr_is_directory output_is_directory read_only_directory
-          scene_is_output threads_fail)
+          scene_is_output threads_fail checkpoint_resume checkpoint_after_kill resume_refused
+          time_limit_zero)
     string(REPLACE "_" "-" name ${case})
     add_test(NAME "cli: ${name}"
              COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash ${case}
                      $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
-                     ${PROJECT_BINARY_DIR}/cli-test/${name})
+                     ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli SKIP_RETURN_CODE 77)
   endforeach()
 endif()

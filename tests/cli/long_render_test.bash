@@ -2,15 +2,15 @@
 # glint-render's promises for long renders, the ones that need a shell (signals, job control,
 # ulimit, symbolic links):
 #
-#   long_render_test.bash CASE PROGRAM SCENE SCRATCH
+#   long_render_test.bash CASE PROGRAM SCENE SCRATCH [OTHER_PROGRAM]
 #
 # CASE is one of the functions below named case_*; it runs PROGRAM on SCENE in the empty
-# directory SCRATCH. No case depends on how fast the machine is: a signal is sent only once
+# directory SCRATCH. OTHER_PROGRAM is a glint-render of another variant (glint-render-report). No case depends on how fast the machine is: a signal is sent only once
 # the progress on stderr shows that passes have completed, and the render is long enough
 # that it is still running then by a wide margin. Exit status 0 on success, 77 when the case
 # cannot run here (ctest's SKIP_RETURN_CODE), 1 on a failure, with the reason on stderr.
 set -uo pipefail
-case_name=$1 program=$2 scene=$3 scratch=$4
+case_name=$1 program=$2 scene=$3 scratch=$4 other_program=${5:-}
 
 fail() {
   echo "FAIL ($case_name): $*" >&2
@@ -227,6 +227,100 @@ case_threads_fail() {
     fail "unexpected message: $err"
   [[ $err != *elapsed* ]] || fail "the render started: $err"
   [[ ! -e out.png ]] || fail "out.png was written"
+}
+
+# The long render, uninterrupted, as full.png and full.pfm: what every resumed render must
+# give byte for byte.
+render_full() {
+  "$program" "$scene" "${long_render[@]}" -o full.png --hdr full.pfm --quiet 2>err.log ||
+    fail "the uninterrupted render failed (status $?)"
+}
+
+# SIGINT with --checkpoint, then --resume (with another thread count): the bytes of an
+# uninterrupted render. Resuming the finished checkpoint again renders nothing new.
+case_checkpoint_resume() {
+  render_full
+  start_long_render --checkpoint ck.glint
+  kill -s INT "$pid"
+  wait "$pid"
+  local status=$?
+  ((status == 130)) || fail "exit status $status, expected 130"
+  grep -q "^glint-render: ck\.glint holds the render so far: continue it with --resume ck\.glint$" \
+    err.log || fail "no message about the checkpoint"
+  [[ $(tail -n 1 err.log) == "glint-render: stopped by SIGINT: out.png holds "* ]] ||
+    fail "the stop message is not the last line"
+  [[ -f ck.glint ]] || fail "no checkpoint written"
+  complete_png out.png
+  ! cmp -s out.png full.png || fail "the interrupted image is already the full one"
+  no_temporaries
+
+  "$program" "$scene" "${long_render[@]}" --threads 1 --resume ck.glint --checkpoint ck.glint \
+    2>err.log || fail "the resumed render failed (status $?)"
+  cmp out.png full.png || fail "the resumed PNG differs from the uninterrupted one"
+  cmp out.pfm full.pfm || fail "the resumed PFM differs from the uninterrupted one"
+  ! grep -q "holds the render so far" err.log || fail "a finished render calls itself unfinished"
+  rm out.png out.pfm
+  "$program" "$scene" "${long_render[@]}" --resume ck.glint 2>err.log ||
+    fail "resuming a finished checkpoint failed (status $?)"
+  cmp out.png full.png && cmp out.pfm full.pfm || fail "the finished checkpoint's image differs"
+  no_temporaries
+}
+
+# Killed outright (no chance to write at exit) after a checkpoint was written between passes:
+# resuming that one still gives the uninterrupted render's bytes.
+case_checkpoint_after_kill() {
+  render_full
+  start_long_render --checkpoint ck.glint --checkpoint-interval 0
+  until [[ -f ck.glint ]]; do
+    kill -0 "$pid" 2>/dev/null || { wait "$pid"; fail "glint-render ended (status $?) early"; }
+    sleep 0.05
+  done
+  kill -s KILL "$pid"
+  wait "$pid" 2>/dev/null  # without the shell's "Killed" line
+  [[ ! -e out.png ]] || fail "an image was written"
+  "$program" "$scene" "${long_render[@]}" --resume ck.glint 2>err.log ||
+    fail "the resumed render failed (status $?)"
+  cmp out.png full.png && cmp out.pfm full.pfm || fail "the resumed image differs"
+}
+
+# A checkpoint of another scene, sample count or variant, or a damaged one: refused before
+# rendering, naming the file and the difference.
+case_resume_refused() {
+  "$program" "$scene" "${long_render[@]}" --time-limit 0 --checkpoint ck.glint --quiet 2>err.log ||
+    fail "making the checkpoint failed (status $?)"
+  rm out.png out.pfm
+  cp "$scene" other.scene && echo "# one more line" >>other.scene
+  refused_before_render "^glint-render: error: cannot resume from ck\.glint: it was made from another scene" \
+    other.scene "${long_render[@]}" --resume ck.glint
+  refused_before_render "^glint-render: error: cannot resume from ck\.glint: it was made with samples per pixel 1024, this render has 512$" \
+    "$scene" "${long_render[@]}" --spp 512 --resume ck.glint
+  refused_before_render "^glint-render: error: cannot resume from ck\.glint: it was made with seed 0, this render has 7$" \
+    "$scene" "${long_render[@]}" --seed 7 --resume ck.glint
+  if [[ -n $other_program ]]; then
+    program=$other_program refused_before_render \
+      "^glint-render: error: cannot resume from ck\.glint: it was made by variant '[a-z_]+', this is variant 'report'$" \
+      "$scene" "${long_render[@]}" --resume ck.glint
+  fi
+  head -c 100 ck.glint >short.glint
+  refused_before_render "^glint-render: error: cannot resume from short\.glint: it is truncated" \
+    "$scene" "${long_render[@]}" --resume short.glint
+  refused_before_render "^glint-render: error: cannot resume from .*tiny\.scene: it is not a glint checkpoint" \
+    "$scene" "${long_render[@]}" --resume "$scene"
+  [[ ! -e out.png && ! -e out.pfm ]] || fail "an image was written"
+}
+
+# --time-limit 0: the first pass, then a complete image of 1 sample per pixel, status 0.
+case_time_limit_zero() {
+  "$program" "$scene" "${long_render[@]}" --time-limit 0 2>err.log
+  local status=$?
+  ((status == 0)) || fail "exit status $status, expected 0"
+  [[ $(tail -n 1 err.log) == "glint-render: time limit of 0 s reached: out.png holds 1 of 1024 samples per pixel (1 of 37 passes)" ]] ||
+    fail "last line on stderr is not the time limit message"
+  grep -q "^glint-render (.*): .* -> out\.png: 160x120, 1 spp," err.log ||
+    fail "the summary line does not give 1 spp"
+  complete_png out.png
+  complete_pfm out.pfm 160 120
+  no_temporaries
 }
 
 declare -F "case_$case_name" >/dev/null || { echo "no case '$case_name'" >&2; exit 2; }

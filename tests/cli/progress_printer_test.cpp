@@ -128,6 +128,16 @@ TEST_CASE("in a log, progress is a line per tenth of the work, ending at 100%", 
           "[ 31%] 2.5 s elapsed, ETA 5.5 s   \n"
           "[ 37%] 3.0 s elapsed, ETA 5.0 s   \n");
   }
+  SECTION("a resumed render: the share done counts its saved samples, the ETA this run's speed") {
+    std::vector<glint::RenderProgress> reports{report(8, 16, 0.0), report(10, 16, 1.0),
+                                               report(16, 16, 4.0)};
+    for (glint::RenderProgress& p : reports)
+      p.samples_at_start = 8;
+    CHECK(printed_to_file(true, reports) ==
+          "[ 50%] 0.0 s elapsed, ETA --   \n"
+          "[ 62%] 1.0 s elapsed, ETA 3.0 s   \n"
+          "[100%] 4.0 s elapsed, ETA 0.0 s   \n");
+  }
   SECTION("--quiet: nothing") {
     CHECK(printed_to_file(false, sixteenths({1, 2, 8, 16})).empty());
   }

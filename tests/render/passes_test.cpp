@@ -229,3 +229,93 @@ TEST_CASE("a callback that throws ends the render and reaches the caller", "[pas
   // The workers waiting for pass 3 must be told to stop, or this would never return.
   CHECK_THROWS_WITH(glint::Renderer<V>::render(scene, settings, control), "enough");
 }
+
+TEMPLATE_TEST_CASE("a render resumed after k passes ends bit for bit as an uninterrupted one",
+                   "[passes][resume]", glint::variants::report, glint::variants::fast) {
+  const glint::Scene scene = small_scene();
+  const glint::RenderSettings base = small_settings(13, 4, 2, 8);  // passes end 1 2 4 8 12 13
+  const glint::Film full = glint::Renderer<TestType>::render(scene, base).film;
+  const int passes = GENERATE(1, 2, 3, 5, 6);
+  INFO("resumed after pass " << passes);
+
+  // The sums after `passes` passes, as a checkpoint would save them.
+  glint::Film sums;
+  glint::RenderControl first;
+  first.pass_done = [&](const glint::PassReport& r) {
+    sums = r.sums;
+    return r.passes_done < passes;
+  };
+  glint::Renderer<TestType>::render(scene, base, first);
+  REQUIRE(sums.width() == 19);
+
+  for (const int threads : {1, 2, 5}) {
+    INFO(threads << " threads");
+    glint::RenderSettings settings = base;
+    settings.threads = threads;
+    std::vector<int> seen;
+    glint::RenderControl control;
+    control.pass_done = [&](const glint::PassReport& r) {
+      seen.push_back(r.passes_done);
+      return true;
+    };
+    std::uint64_t at_start = 0;
+    control.progress = [&](const glint::RenderProgress& p) { at_start = p.samples_at_start; };
+    const glint::RenderResult result =
+        glint::Renderer<TestType>::render(scene, settings, control, {&sums, passes});
+    CHECK(result.complete());
+    CHECK(result.passes_done == 6);
+    CHECK(result.samples_per_pixel == 13);
+    CHECK(same_bits(result.film, full));
+    std::vector<int> remaining;
+    for (int p = passes + 1; p <= 6; ++p)
+      remaining.push_back(p);
+    CHECK(seen == remaining);
+    CHECK(at_start == 19u * 13u * std::uint64_t(glint::pass_ends(13, 4)[std::size_t(passes) - 1]));
+  }
+}
+
+TEST_CASE("a resumed render that is stopped again holds its passes' samples", "[passes][resume]") {
+  using V = glint::variants::report;
+  const glint::Scene scene = small_scene();
+  const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
+  glint::Film sums;
+  glint::RenderControl first;
+  first.pass_done = [&](const glint::PassReport& r) {
+    sums = r.sums;
+    return r.passes_done < 2;
+  };
+  glint::Renderer<V>::render(scene, settings, first);
+
+  std::atomic<bool> stop{true};
+  const glint::RenderResult none =
+      glint::Renderer<V>::render(scene, settings, glint::RenderControl{{}, {}, &stop}, {&sums, 2});
+  CHECK(none.passes_done == 2);
+  CHECK(none.samples_per_pixel == 2);
+  CHECK(same_bits(none.film, one_shot<V>(scene, settings, 2)));
+
+  const glint::RenderResult later = stopped_after<V>(scene, settings, 4);  // passes end 1 2 4 8
+  glint::RenderControl control;
+  control.pass_done = [](const glint::PassReport& r) { return r.passes_done < 4; };
+  const glint::RenderResult resumed =
+      glint::Renderer<V>::render(scene, settings, control, {&sums, 2});
+  CHECK(resumed.passes_done == 4);
+  CHECK(resumed.samples_per_pixel == 8);
+  CHECK(same_bits(resumed.film, later.film));
+}
+
+TEST_CASE("a start that does not fit the settings is refused", "[passes][resume]") {
+  using V = glint::variants::report;
+  const glint::Scene scene = small_scene();
+  const glint::RenderSettings settings = small_settings(13, 4, 2, 8);  // 6 passes
+  const glint::Film right(19, 13), wrong(13, 19);
+  const auto refused = [&](const glint::RenderStart& from) {
+    CHECK_THROWS_AS(glint::Renderer<V>::render(scene, settings, glint::RenderControl{}, from),
+                    glint::SettingsError);
+  };
+  refused({&wrong, 1});
+  refused({nullptr, 2});
+  refused({&right, 7});
+  refused({&right, -1});
+  CHECK(glint::Renderer<V>::render(scene, settings, glint::RenderControl{}, {&right, 6})
+            .samples_per_pixel == 13);
+}

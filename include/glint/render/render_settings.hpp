@@ -75,6 +75,9 @@ struct RenderProgress {
   int pass_count = 0;
   int samples_per_pixel_done = 0;  ///< in every pixel: the image that a stop now would give
   bool last = false;               ///< the render's last call: complete, or stopped
+  /// Of samples_done, those a resumed render started with (RenderControl::start): not work
+  /// of this run, so not part of its speed.
+  std::uint64_t samples_at_start = 0;
   double fraction() const {
     return samples_total ? double(samples_done) / double(samples_total) : 1.0;
   }

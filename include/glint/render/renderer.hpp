@@ -64,6 +64,16 @@ using ProgressCallback = std::function<void(const RenderProgress&)>;
 /// Called after every pass; returning false stops the render there.
 using PassCallback = std::function<bool(const PassReport&)>;
 
+/// Where a render begins. Default: from black, at the first pass. With `sums` set: after pass
+/// `passes_done`, from the per-pixel sums a render with the same settings had then (a
+/// PassReport's sums, as a checkpoint keeps them). The remaining passes add to those sums, so
+/// the image ends bit for bit as an uninterrupted render's, whatever the thread counts of
+/// either; the callbacks see only the remaining passes.
+struct RenderStart {
+  const Film* sums = nullptr;  ///< width x height of the settings; read, and copied, at the start
+  int passes_done = 0;         ///< between 0 and the pass count; 0 without sums
+};
+
 /// How a caller follows and stops a render. Every callback runs on the calling thread, never
 /// on a worker, while the workers wait or render; the render stops only between passes.
 struct RenderControl {
@@ -129,9 +139,10 @@ class Renderer {
   }
 
   /// Renders pass by pass under `control`: progress reports, a callback after each pass, and
-  /// a stop request honoured between passes.
+  /// a stop request honoured between passes; `from` may begin it after some passes (resuming a
+  /// checkpoint). Also throws SettingsError for a start that does not fit the settings.
   static RenderResult render(const Scene& scene, const RenderSettings& settings,
-                             const RenderControl& control) {
+                             const RenderControl& control, const RenderStart& from = {}) {
     validate(settings);
     check_supported<C>(scene);
     check_work<C>(scene, settings.max_depth);
@@ -140,12 +151,17 @@ class Renderer {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
 
-    // The film holds each pixel's running sum until the end, when it is divided in place.
-    RenderResult result{Film(settings.width, settings.height), {}, 0, 0, 0};
+    const std::vector<int> ends = pass_ends(settings.samples_per_pixel, settings.max_pass_samples);
+    const std::size_t first_pass = check_start(from, settings, ends.size());
+
+    // The film holds each pixel's running sum until the end, when it is divided.
+    RenderResult result{from.sums ? *from.sums : Film(settings.width, settings.height),
+                        {},
+                        first_pass ? ends[first_pass - 1] : 0,
+                        int(first_pass),
+                        int(ends.size())};
     const Camera camera(scene.camera(), settings.width, settings.height);
     const PathTracer<C> tracer(scene, settings.max_depth);
-    const std::vector<int> ends = pass_ends(settings.samples_per_pixel, settings.max_pass_samples);
-    result.pass_count = int(ends.size());
 
     const TileGrid grid(settings);
     const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -153,7 +169,7 @@ class Renderer {
         std::min<std::size_t>(settings.threads > 0 ? settings.threads : hardware, grid.count));
     const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
 
-    Schedule schedule(grid.count, ends.size());
+    Schedule schedule(grid.count, ends.size(), first_pass);
     std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
     {
       std::vector<std::jthread> workers;
@@ -174,17 +190,18 @@ class Renderer {
         }
       }
 
+      const std::uint64_t samples_at_start = pixels * std::uint64_t(result.samples_per_pixel);
       const auto report = [&](bool last) {
         if (!control.progress) return;
-        std::uint64_t done = 0;
+        std::uint64_t done = samples_at_start;
         for (const PaddedCounters& c : counters)
           done += c.samples.load(std::memory_order_relaxed);
         const int spp_done = result.passes_done ? ends[std::size_t(result.passes_done) - 1] : 0;
         control.progress(RenderProgress{done, pixels * std::uint64_t(settings.samples_per_pixel),
                                         elapsed(), result.passes_done, result.pass_count, spp_done,
-                                        last});
+                                        last, samples_at_start});
       };
-      for (std::size_t pass = 0; pass < ends.size(); ++pass) {
+      for (std::size_t pass = first_pass; pass < ends.size(); ++pass) {
         if (control.stop && control.stop->load(std::memory_order_relaxed)) break;
         schedule.release(pass);
         while (!schedule.wait_for_pass(pass, progress_interval))
@@ -234,6 +251,25 @@ class Renderer {
   }
 
  private:
+  /// The pass to begin with; throws SettingsError for a start that cannot belong to a render
+  /// with these settings.
+  static std::size_t check_start(const RenderStart& start, const RenderSettings& settings,
+                                 std::size_t pass_count) {
+    const auto fail = [](const std::string& problem) {
+      throw SettingsError("glint: cannot start the render there: " + problem);
+    };
+    if (start.passes_done < 0 || std::size_t(start.passes_done) > pass_count)
+      fail(std::to_string(start.passes_done) + " passes done, of " + std::to_string(pass_count));
+    if (!start.sums) {
+      if (start.passes_done != 0) fail("passes done without their sums");
+    } else if (start.sums->width() != settings.width || start.sums->height() != settings.height) {
+      fail("sums of " + std::to_string(start.sums->width()) + "x" +
+           std::to_string(start.sums->height()) + " pixels for an image of " +
+           std::to_string(settings.width) + "x" + std::to_string(settings.height));
+    }
+    return std::size_t(start.passes_done);
+  }
+
   /// Pixels [x0, x1) x [y0, y1).
   struct Tile {
     int x0, y0, x1, y1;
@@ -269,7 +305,13 @@ class Renderer {
   /// is released when the one before has completed, because a tile's sums carry over.
   class Schedule {
    public:
-    Schedule(std::size_t tiles, std::size_t passes) : tiles_(tiles), items_(tiles * passes) {}
+    /// Passes before `first_pass` count as done: their sums are already in the film.
+    Schedule(std::size_t tiles, std::size_t passes, std::size_t first_pass)
+        : tiles_(tiles),
+          items_(tiles * passes),
+          next_item_(tiles * first_pass),
+          items_done_(tiles * first_pass),
+          released_(static_cast<long long>(first_pass)) {}
 
     /// The next item for a worker, once its pass is released; nullopt when there is nothing
     /// more to do (all items taken, or the render stopped).
@@ -319,9 +361,9 @@ class Renderer {
     static constexpr long long kStopped = LLONG_MIN;
     const std::size_t tiles_;
     const std::size_t items_;
-    std::atomic<std::size_t> next_item_{0};
-    std::atomic<std::size_t> items_done_{0};
-    std::atomic<long long> released_{0};  ///< passes released, or kStopped
+    std::atomic<std::size_t> next_item_;
+    std::atomic<std::size_t> items_done_;
+    std::atomic<long long> released_;  ///< passes released, or kStopped
     std::mutex mutex_;
     std::condition_variable pass_complete_;
   };

@@ -1,0 +1,320 @@
+#pragma once
+// A render's checkpoint: the per-pixel sums of its completed passes and what identifies the
+// image they belong to, so that a later run can continue it (Renderer's RenderControl::start)
+// and produce exactly the bytes an uninterrupted render would.
+//
+// The format, little-endian with explicit sizes (version 1):
+//
+//   offset  size  field
+//   0       8     magic "GLINTCKP"
+//   8       4     u32 format version
+//   12      8     u64 FNV-1a hash of the scene file's bytes
+//   20      4     u32 variant name length n (at most kMaxVariantName)
+//   24      n     variant name
+//   24+n    4*9   u32 width, height, samples per pixel, max depth, max_pass_samples;
+//                 u64 seed; u32 antialias sigma (float bits)
+//   60+n    8     u32 passes done, u32 samples per pixel done
+//   68+n    12wh  f32 sums, r g b per pixel, rows from the top
+//   end-8   8     u64 FNV-1a hash of every byte before it
+//
+// The image settings are stored as they are, not only hashed, so that a mismatch can be named.
+// The reader checks every size against the header before allocating, and never trusts one.
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "glint/error.hpp"
+#include "glint/image/film.hpp"
+#include "glint/render/render_settings.hpp"
+
+namespace glint {
+
+/// A checkpoint that cannot be read, is damaged, or belongs to another render.
+class CheckpointError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// What makes two renders the same image: a checkpoint continues only a render that has the
+/// same key. The thread count and tile size are not in it, because the image does not depend
+/// on them.
+struct CheckpointKey {
+  std::uint64_t scene_hash = 0;  ///< fnv1a of the scene file's bytes
+  std::string variant;
+  int width = 0;
+  int height = 0;
+  int samples_per_pixel = 0;
+  int max_depth = 0;
+  int max_pass_samples = 0;
+  std::uint64_t seed = 0;
+  float antialias_sigma = 0.0f;
+
+  static CheckpointKey of(std::uint64_t scene_hash, std::string_view variant,
+                          const RenderSettings& settings) {
+    return {scene_hash,
+            std::string(variant),
+            settings.width,
+            settings.height,
+            settings.samples_per_pixel,
+            settings.max_depth,
+            settings.max_pass_samples,
+            settings.seed,
+            settings.antialias_sigma};
+  }
+};
+
+/// The state of a render after `passes_done` passes.
+struct Checkpoint {
+  CheckpointKey key;
+  int passes_done = 0;
+  int samples_per_pixel_done = 0;
+  Film sums;  ///< per-pixel sums of the samples of the completed passes (PassReport::sums)
+};
+
+inline constexpr char kCheckpointMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'K', 'P'};
+inline constexpr std::uint32_t kCheckpointVersion = 1;
+inline constexpr std::uint32_t kMaxVariantName = 64;
+
+/// 64-bit FNV-1a, continuing from `hash`: the checkpoint's content and scene hashes. Not a
+/// defence against forgery, only against mix-ups and damage.
+inline std::uint64_t fnv1a(const void* data, std::size_t size,
+                           std::uint64_t hash = 0xcbf29ce484222325ULL) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < size; ++i) {
+    hash ^= bytes[i];
+    hash *= 0x100000001b3ULL;
+  }
+  return hash;
+}
+
+namespace detail::checkpoint {
+
+inline constexpr std::size_t kFixedHeader = 8 + 4 + 8 + 4;  // up to the variant name
+inline constexpr std::size_t kSettingsAndPasses = 4 * 5 + 8 + 4 + 4 + 4;
+
+/// Writes fields in order into bytes sized beforehand (GCC 12 warns, wrongly, about a
+/// vector<char> growing by insert).
+struct Writer {
+  char* at;
+  void u32(std::uint32_t v) {
+    for (int i = 0; i < 4; ++i)
+      *at++ = static_cast<char>(v >> (8 * i));
+  }
+  void u64(std::uint64_t v) {
+    u32(std::uint32_t(v));
+    u32(std::uint32_t(v >> 32));
+  }
+  void bytes(const char* data, std::size_t size) {
+    std::memcpy(at, data, size);
+    at += size;
+  }
+};
+
+/// Reads fields in order from bytes whose size was checked beforehand.
+struct Cursor {
+  const char* at;
+  std::uint32_t u32() {
+    std::uint32_t v = 0;
+    for (int i = 0; i < 4; ++i)
+      v |= std::uint32_t(static_cast<unsigned char>(at[i])) << (8 * i);
+    at += 4;
+    return v;
+  }
+  std::uint64_t u64() {
+    const std::uint64_t low = u32();
+    return low | std::uint64_t(u32()) << 32;
+  }
+};
+
+/// The header's fields, read from its first bytes; `size` is where the sums begin.
+struct Header {
+  Checkpoint meta;  ///< everything but the sums
+  std::size_t size = 0;
+  std::uint64_t file_size = 0;  ///< what the header says the whole file holds
+};
+
+/// Parses the header from `bytes` (the file's first bytes, perhaps all of it) of a file of
+/// `file_size` bytes; throws CheckpointError with `fail`'s prefix.
+template <typename Fail>
+Header parse_header(const char* bytes, std::size_t available, std::uint64_t file_size,
+                    const Fail& fail) {
+  if (available < kFixedHeader) fail("it is truncated (" + std::to_string(file_size) + " bytes)");
+  if (std::memcmp(bytes, kCheckpointMagic, sizeof kCheckpointMagic) != 0)
+    fail("it is not a glint checkpoint (no GLINTCKP magic)");
+  Cursor in{bytes + sizeof kCheckpointMagic};
+  const std::uint32_t version = in.u32();
+  if (version != kCheckpointVersion)
+    fail("format version " + std::to_string(version) + ", this glint reads version " +
+         std::to_string(kCheckpointVersion));
+  Header header;
+  CheckpointKey& key = header.meta.key;
+  key.scene_hash = in.u64();
+  const std::uint32_t name_size = in.u32();
+  if (name_size > kMaxVariantName)
+    fail("a variant name of " + std::to_string(name_size) + " bytes");
+  header.size = kFixedHeader + name_size + kSettingsAndPasses;
+  if (available < header.size) fail("it is truncated (" + std::to_string(file_size) + " bytes)");
+  key.variant.assign(in.at, name_size);
+  in.at += name_size;
+  const std::uint32_t width = in.u32(), height = in.u32(), spp = in.u32(), depth = in.u32(),
+                      max_pass = in.u32();
+  key.seed = in.u64();
+  key.antialias_sigma = std::bit_cast<float>(in.u32());
+  const std::uint32_t passes = in.u32(), spp_done = in.u32();
+
+  // Every count within glint's limits before any of them sizes anything.
+  if (width < 1 || width > std::uint32_t(limits::max_image_side) || height < 1 ||
+      height > std::uint32_t(limits::max_image_side) ||
+      std::uint64_t(width) * height > std::uint64_t(limits::max_image_pixels))
+    fail("an image size of " + std::to_string(width) + "x" + std::to_string(height));
+  if (spp < 1 || spp > std::uint32_t(limits::max_samples_per_pixel) || max_pass < 1 ||
+      max_pass > std::uint32_t(limits::max_samples_per_pixel) ||
+      depth > std::uint32_t(limits::max_depth))
+    fail("settings outside glint's limits");
+  key.width = int(width);
+  key.height = int(height);
+  key.samples_per_pixel = int(spp);
+  key.max_depth = int(depth);
+  key.max_pass_samples = int(max_pass);
+  const std::vector<int> ends = pass_ends(key.samples_per_pixel, key.max_pass_samples);
+  if (passes < 1 || passes > ends.size() || ends[passes - 1] != int(spp_done))
+    fail(std::to_string(passes) + " passes of " + std::to_string(spp_done) +
+         " samples per pixel, which is no pass boundary of its settings");
+  header.meta.passes_done = int(passes);
+  header.meta.samples_per_pixel_done = int(spp_done);
+  header.file_size = header.size + std::uint64_t(width) * height * 12 + 8;
+  if (file_size != header.file_size)
+    fail((file_size < header.file_size ? "it is truncated (" : "it is too long (") +
+         std::to_string(file_size) + " bytes, the header promises " +
+         std::to_string(header.file_size) + ")");
+  return header;
+}
+
+inline auto failer(const std::string& name) {
+  return [name](const std::string& why) {
+    throw CheckpointError("cannot resume from " + name + ": " + why);
+  };
+}
+
+}  // namespace detail::checkpoint
+
+/// The bytes of the checkpoint of a render with `key` after `passes_done` passes, when its
+/// pixels hold the sums `sums` of `samples_per_pixel_done` samples each.
+inline std::vector<char> encode_checkpoint(const CheckpointKey& key, int passes_done,
+                                           int samples_per_pixel_done, const Film& sums) {
+  using namespace detail::checkpoint;
+  std::vector<char> out(kFixedHeader + key.variant.size() + kSettingsAndPasses +
+                        sums.pixels().size() * 12 + 8);
+  Writer put{out.data()};
+  put.bytes(kCheckpointMagic, sizeof kCheckpointMagic);
+  put.u32(kCheckpointVersion);
+  put.u64(key.scene_hash);
+  put.u32(std::uint32_t(key.variant.size()));
+  put.bytes(key.variant.data(), key.variant.size());
+  for (const int v :
+       {key.width, key.height, key.samples_per_pixel, key.max_depth, key.max_pass_samples})
+    put.u32(std::uint32_t(v));
+  put.u64(key.seed);
+  put.u32(std::bit_cast<std::uint32_t>(key.antialias_sigma));
+  put.u32(std::uint32_t(passes_done));
+  put.u32(std::uint32_t(samples_per_pixel_done));
+  for (const Color& pixel : sums.pixels())
+    for (const float v : {pixel.x, pixel.y, pixel.z})
+      put.u32(std::bit_cast<std::uint32_t>(v));
+  put.u64(fnv1a(out.data(), out.size() - 8));
+  return out;
+}
+
+inline std::vector<char> encode_checkpoint(const Checkpoint& c) {
+  return encode_checkpoint(c.key, c.passes_done, c.samples_per_pixel_done, c.sums);
+}
+
+/// The checkpoint in `bytes`, read from the file `name` (for messages). Throws CheckpointError
+/// naming the file and the problem for anything but a complete, undamaged checkpoint.
+inline Checkpoint decode_checkpoint(const std::vector<char>& bytes, const std::string& name) {
+  using namespace detail::checkpoint;
+  const auto fail = failer(name);
+  Header header = parse_header(bytes.data(), bytes.size(), bytes.size(), fail);
+  Checkpoint c = std::move(header.meta);
+  Cursor in{bytes.data() + bytes.size() - 8};
+  if (in.u64() != fnv1a(bytes.data(), bytes.size() - 8))
+    fail("it is damaged (its content hash does not match)");
+  c.sums = Film(c.key.width, c.key.height);
+  in.at = bytes.data() + header.size;
+  for (int y = 0; y < c.key.height; ++y)
+    for (int x = 0; x < c.key.width; ++x) {
+      Color& pixel = c.sums.at(x, y);
+      pixel.x = std::bit_cast<float>(in.u32());
+      pixel.y = std::bit_cast<float>(in.u32());
+      pixel.z = std::bit_cast<float>(in.u32());
+    }
+  return c;
+}
+
+/// Reads and checks the checkpoint file `path`. The header is read and checked against the
+/// file's size first, so a damaged or foreign file costs at most what it holds, and never
+/// more than a checkpoint of glint's largest image. Throws CheckpointError.
+inline Checkpoint read_checkpoint(const std::filesystem::path& path) {
+  using namespace detail::checkpoint;
+  const std::string name = path.string();
+  const auto fail = failer(name);
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) fail("it is a directory");
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(name.c_str(), "rb"),
+                                                             &std::fclose);
+  if (!file) fail(std::strerror(errno));
+  if (std::fseek(file.get(), 0, SEEK_END) != 0) fail("it cannot be read to its end");
+  const long size = std::ftell(file.get());
+  if (size < 0) fail("it cannot be read to its end");
+  std::rewind(file.get());
+  // The largest header: the fixed fields and the longest variant name.
+  std::vector<char> bytes(std::min<std::size_t>(
+      std::size_t(size), kFixedHeader + kMaxVariantName + kSettingsAndPasses));
+  if (std::fread(bytes.data(), 1, bytes.size(), file.get()) != bytes.size())
+    fail("it could not be read");
+  parse_header(bytes.data(), bytes.size(), std::uint64_t(size), fail);  // sizes checked here
+  const std::size_t start = bytes.size();
+  bytes.resize(std::size_t(size));
+  if (std::fread(bytes.data() + start, 1, bytes.size() - start, file.get()) != bytes.size() - start)
+    fail("it could not be read");
+  return decode_checkpoint(bytes, name);
+}
+
+/// Throws CheckpointError, naming the file and the first difference, unless the checkpoint
+/// `c` read from `name` belongs to the render `expected` describes.
+inline void check_checkpoint_matches(const Checkpoint& c, const CheckpointKey& expected,
+                                     const std::string& name) {
+  const auto fail = detail::checkpoint::failer(name);
+  const CheckpointKey& got = c.key;
+  const auto differs = [&](const char* what, const auto& theirs, const auto& ours) {
+    if (theirs != ours)
+      fail(std::string("it was made with ") + what + " " + std::to_string(theirs) +
+           ", this render has " + std::to_string(ours));
+  };
+  if (got.scene_hash != expected.scene_hash)
+    fail("it was made from another scene (the scene file's bytes differ)");
+  if (got.variant != expected.variant)
+    fail("it was made by variant '" + got.variant + "', this is variant '" + expected.variant +
+         "'");
+  differs("width", got.width, expected.width);
+  differs("height", got.height, expected.height);
+  differs("samples per pixel", got.samples_per_pixel, expected.samples_per_pixel);
+  differs("max depth", got.max_depth, expected.max_depth);
+  differs("seed", got.seed, expected.seed);
+  differs("samples per pass at most", got.max_pass_samples, expected.max_pass_samples);
+  if (std::bit_cast<std::uint32_t>(got.antialias_sigma) !=
+      std::bit_cast<std::uint32_t>(expected.antialias_sigma))
+    fail("it was made with antialias sigma " + std::to_string(got.antialias_sigma) +
+         ", this render has " + std::to_string(expected.antialias_sigma));
+}
+
+}  // namespace glint

@@ -1,0 +1,277 @@
+// Checkpoint files (io/checkpoint.hpp): a round trip keeps every bit, and every damaged,
+// truncated or foreign file is refused with a message naming the file and the problem, never
+// read past its end nor trusted for a size.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "glint/io/checkpoint.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+glint::CheckpointKey sample_key() {
+  glint::RenderSettings settings;
+  settings.width = 5;
+  settings.height = 3;
+  settings.samples_per_pixel = 100;
+  settings.max_depth = 7;
+  settings.seed = 0x0123456789abcdefULL;
+  settings.antialias_sigma = 0.4f;
+  settings.max_pass_samples = 32;
+  return glint::CheckpointKey::of(0xfeedfacecafebeefULL, "report", settings);
+}
+
+/// A checkpoint after pass 7 of 100 spp in passes of at most 32: 1, 2, 4, 8, 16, 32, 64.
+glint::Checkpoint sample_checkpoint() {
+  glint::Checkpoint c;
+  c.key = sample_key();
+  c.passes_done = 7;
+  c.samples_per_pixel_done = 64;
+  c.sums = glint::Film(5, 3);
+  float v = 0.25f;
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x, v *= -1.7f)
+      c.sums.at(x, y) = glint::Color(v, -0.0f, std::numeric_limits<float>::denorm_min() * float(x));
+  return c;
+}
+
+bool same_bits(const glint::Film& a, const glint::Film& b) {
+  return a.width() == b.width() && a.height() == b.height() &&
+         std::memcmp(a.pixels().data(), b.pixels().data(),
+                     a.pixels().size() * sizeof(glint::Color)) == 0;
+}
+
+/// The message of the CheckpointError that decoding `bytes` throws, or "" if none.
+std::string decode_error(const std::vector<char>& bytes) {
+  try {
+    glint::decode_checkpoint(bytes, "ck.bin");
+  } catch (const glint::CheckpointError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+/// The bytes with the content hash at the end recomputed, as a file damaged or forged with
+/// care would have it: the checks behind the hash must still catch it.
+std::vector<char> rehashed(std::vector<char> bytes) {
+  const std::uint64_t hash = glint::fnv1a(bytes.data(), bytes.size() - 8);
+  for (int i = 0; i < 8; ++i)
+    bytes[bytes.size() - 8 + std::size_t(i)] = static_cast<char>(hash >> (8 * i));
+  return bytes;
+}
+
+void put32(std::vector<char>& bytes, std::size_t at, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i)
+    bytes[at + std::size_t(i)] = static_cast<char>(v >> (8 * i));
+}
+
+// Offsets in the sample checkpoint (variant "report", 6 bytes).
+constexpr std::size_t kVersionAt = 8, kNameSizeAt = 20, kWidthAt = 30, kPassesAt = 62, kSumsAt = 70;
+
+}  // namespace
+
+TEST_CASE("a checkpoint round trip keeps every field and every bit of the sums", "[checkpoint]") {
+  const glint::Checkpoint c = sample_checkpoint();
+  const std::vector<char> bytes = glint::encode_checkpoint(c);
+  CHECK(bytes.size() == kSumsAt + 5 * 3 * 12 + 8);
+  CHECK(std::string(bytes.data(), 8) == "GLINTCKP");
+  const glint::Checkpoint back = glint::decode_checkpoint(bytes, "ck.bin");
+  CHECK(back.key.scene_hash == c.key.scene_hash);
+  CHECK(back.key.variant == "report");
+  CHECK(back.key.width == 5);
+  CHECK(back.key.height == 3);
+  CHECK(back.key.samples_per_pixel == 100);
+  CHECK(back.key.max_depth == 7);
+  CHECK(back.key.max_pass_samples == 32);
+  CHECK(back.key.seed == c.key.seed);
+  CHECK(back.key.antialias_sigma == 0.4f);
+  CHECK(back.passes_done == 7);
+  CHECK(back.samples_per_pixel_done == 64);
+  CHECK(same_bits(back.sums, c.sums));
+  CHECK(glint::encode_checkpoint(back) == bytes);
+  CHECK_NOTHROW(glint::check_checkpoint_matches(back, sample_key(), "ck.bin"));
+}
+
+TEST_CASE("the format is little-endian with explicit sizes", "[checkpoint]") {
+  const std::vector<char> bytes = glint::encode_checkpoint(sample_checkpoint());
+  const auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (int i = 0; i < 4; ++i)
+      v |= std::uint32_t(static_cast<unsigned char>(bytes[at + std::size_t(i)])) << (8 * i);
+    return v;
+  };
+  CHECK(u32(kVersionAt) == glint::kCheckpointVersion);
+  CHECK(u32(kNameSizeAt) == 6);
+  CHECK(std::string(bytes.data() + 24, 6) == "report");
+  CHECK(u32(kWidthAt) == 5);
+  CHECK(u32(kWidthAt + 4) == 3);
+  CHECK(u32(kPassesAt) == 7);
+  CHECK(u32(kPassesAt + 4) == 64);
+  float first = 0.0f;
+  const std::uint32_t bits = u32(kSumsAt);
+  std::memcpy(&first, &bits, 4);
+  CHECK(first == 0.25f);
+}
+
+TEST_CASE("a truncated checkpoint is refused at any length", "[checkpoint]") {
+  const std::vector<char> bytes = glint::encode_checkpoint(sample_checkpoint());
+  for (const std::size_t size : {std::size_t(0), std::size_t(1), std::size_t(7), std::size_t(8),
+                                 std::size_t(12), std::size_t(23), std::size_t(29), kSumsAt - 1,
+                                 kSumsAt, kSumsAt + 13, bytes.size() - 8, bytes.size() - 1}) {
+    INFO(size << " of " << bytes.size() << " bytes");
+    const std::string message =
+        decode_error(std::vector<char>(bytes.begin(), bytes.begin() + std::ptrdiff_t(size)));
+    CHECK_THAT(message, Catch::StartsWith("cannot resume from ck.bin: "));
+    // The first 8 bytes decide whether it is a checkpoint at all.
+    if (size >= 8) CHECK_THAT(message, Catch::Contains("truncated"));
+  }
+  std::vector<char> longer = bytes;
+  longer.push_back('x');
+  CHECK_THAT(decode_error(longer), Catch::Contains("too long"));
+}
+
+TEST_CASE("a checkpoint with a bad magic, version or header is refused", "[checkpoint]") {
+  const std::vector<char> good = glint::encode_checkpoint(sample_checkpoint());
+  std::vector<char> bytes = good;
+
+  SECTION("magic") {
+    bytes[3] = 'X';
+    CHECK(decode_error(bytes) ==
+          "cannot resume from ck.bin: it is not a glint checkpoint (no GLINTCKP magic)");
+  }
+  SECTION("version") {
+    put32(bytes, kVersionAt, 2);
+    CHECK(decode_error(bytes) ==
+          "cannot resume from ck.bin: format version 2, this glint reads version 1");
+  }
+  SECTION("a variant name longer than any") {
+    put32(bytes, kNameSizeAt, 0xffffffffu);
+    CHECK_THAT(decode_error(bytes), Catch::Contains("a variant name of 4294967295 bytes"));
+  }
+  SECTION("a size beyond the limits, which must not be allocated") {
+    put32(bytes, kWidthAt, 1u << 15);
+    put32(bytes, kWidthAt + 4, 1u << 15);
+    CHECK_THAT(decode_error(rehashed(bytes)), Catch::Contains("an image size of 32768x32768"));
+    put32(bytes, kWidthAt, 0);
+    CHECK_THAT(decode_error(rehashed(bytes)), Catch::Contains("an image size of 0x"));
+  }
+  SECTION("a size within the limits that the file does not hold") {
+    put32(bytes, kWidthAt, 4096);
+    put32(bytes, kWidthAt + 4, 4096);
+    CHECK_THAT(decode_error(rehashed(bytes)),
+               Catch::Contains("truncated (" + std::to_string(good.size()) +
+                               " bytes, the header promises " +
+                               std::to_string(kSumsAt + 4096 * 4096 * 12 + 8) + ")"));
+    put32(bytes, kWidthAt, 4);
+    put32(bytes, kWidthAt + 4, 3);
+    CHECK_THAT(decode_error(rehashed(bytes)), Catch::Contains("too long"));
+  }
+  SECTION("passes that end at no pass boundary") {
+    put32(bytes, kPassesAt + 4, 63);
+    CHECK_THAT(decode_error(rehashed(bytes)),
+               Catch::Contains("7 passes of 63 samples per pixel, which is no pass boundary"));
+    put32(bytes, kPassesAt, 0);
+    CHECK_THAT(decode_error(rehashed(bytes)), Catch::Contains("0 passes"));
+    put32(bytes, kPassesAt, 10);
+    CHECK_THAT(decode_error(rehashed(bytes)), Catch::Contains("10 passes"));
+  }
+}
+
+TEST_CASE("a damaged checkpoint is refused by its content hash", "[checkpoint]") {
+  const std::vector<char> good = glint::encode_checkpoint(sample_checkpoint());
+  for (const std::size_t at :
+       {std::size_t(12), kWidthAt + 8, kSumsAt, good.size() - 9, good.size() - 1}) {
+    INFO("byte " << at << " changed");
+    std::vector<char> bytes = good;
+    bytes[at] = static_cast<char>(bytes[at] ^ 0x10);
+    CHECK(decode_error(bytes) ==
+          "cannot resume from ck.bin: it is damaged (its content hash does not match)");
+  }
+}
+
+TEST_CASE("a checkpoint of another render is refused, naming the difference", "[checkpoint]") {
+  const glint::Checkpoint c = sample_checkpoint();
+  const auto refusal = [&](const glint::CheckpointKey& key) {
+    try {
+      glint::check_checkpoint_matches(c, key, "ck.bin");
+    } catch (const glint::CheckpointError& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  glint::CheckpointKey key = sample_key();
+  key.scene_hash ^= 1;
+  CHECK(refusal(key) ==
+        "cannot resume from ck.bin: it was made from another scene (the scene file's bytes "
+        "differ)");
+  key = sample_key();
+  key.variant = "fast";
+  CHECK(refusal(key) ==
+        "cannot resume from ck.bin: it was made by variant 'report', this is variant 'fast'");
+  key = sample_key();
+  key.samples_per_pixel = 128;
+  CHECK(refusal(key) ==
+        "cannot resume from ck.bin: it was made with samples per pixel 100, this render has 128");
+  key = sample_key();
+  key.width = 6;
+  CHECK_THAT(refusal(key), Catch::Contains("width 5, this render has 6"));
+  key = sample_key();
+  key.height = 2;
+  CHECK_THAT(refusal(key), Catch::Contains("height 3, this render has 2"));
+  key = sample_key();
+  key.max_depth = 3;
+  CHECK_THAT(refusal(key), Catch::Contains("max depth 7, this render has 3"));
+  key = sample_key();
+  key.seed = 1;
+  CHECK_THAT(refusal(key), Catch::Contains("seed 81985529216486895, this render has 1"));
+  key = sample_key();
+  key.max_pass_samples = 4;
+  CHECK_THAT(refusal(key), Catch::Contains("samples per pass at most 32, this render has 4"));
+  key = sample_key();
+  key.antialias_sigma = std::nextafter(0.4f, 1.0f);
+  CHECK_THAT(refusal(key), Catch::Contains("antialias sigma"));
+}
+
+TEST_CASE("read_checkpoint reads a file, and refuses what is no checkpoint", "[checkpoint]") {
+  const fs::path dir = fs::path(GLINT_BINARY_DIR) / "unit-scratch" / "checkpoint";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto write = [&](const std::string& name, const std::vector<char>& bytes) {
+    std::ofstream(dir / name, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+    return dir / name;
+  };
+  const auto refusal = [](const fs::path& path) {
+    try {
+      glint::read_checkpoint(path);
+    } catch (const glint::CheckpointError& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  const glint::Checkpoint c = sample_checkpoint();
+  const std::vector<char> bytes = glint::encode_checkpoint(c);
+  const glint::Checkpoint back = glint::read_checkpoint(write("good.ck", bytes));
+  CHECK(same_bits(back.sums, c.sums));
+  CHECK(back.passes_done == 7);
+
+  CHECK_THAT(
+      refusal(dir / "missing.ck"),
+      Catch::StartsWith("cannot resume from " + (dir / "missing.ck").string() + ": No such"));
+  CHECK_THAT(refusal(dir), Catch::EndsWith("it is a directory"));
+  CHECK_THAT(refusal(write("empty.ck", {})), Catch::Contains("truncated (0 bytes)"));
+  CHECK_THAT(refusal(write("short.ck", std::vector<char>(bytes.begin(), bytes.begin() + 40))),
+             Catch::Contains("truncated (40 bytes)"));
+  // A large file that is no checkpoint: refused from its first bytes.
+  CHECK_THAT(refusal(write("other.ck", std::vector<char>(1 << 20, 'P'))),
+             Catch::Contains("no GLINTCKP magic"));
+  fs::remove_all(dir);
+}
