@@ -117,6 +117,14 @@ if(GLINT_BASH)
   endforeach()
 endif()
 
+# The report's tree model refuses a scene whose rays per sample would explode, before it
+# renders anything; the one-lobe default variant renders the same scene.
+glint_cli_test(tree-work-refused PROGRAM glint-render-report STATUS 1
+               STDERR "split-room.scene\\) split every ray.*Lower max_depth to 18"
+               ARGS ${glint_cli_scenes}/split-room.scene -o out.png OUTPUT out.png)
+glint_cli_test(tree-work-one-lobe STATUS 0 EXPECT_OUTPUT OUTPUT out.png
+               ARGS ${glint_cli_scenes}/split-room.scene -o out.png)
+
 # A shading kind the variant's policy lacks is rejected when the scene is loaded; the example
 # program with its own policy renders the same scene.
 set(glint_striped_scene ${PROJECT_SOURCE_DIR}/examples/custom_shading/striped.scene)
