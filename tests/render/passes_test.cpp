@@ -11,23 +11,12 @@
 
 #include "glint/render/renderer.hpp"
 #include "glint/variants.hpp"
+#include "small_scene.hpp"
 
 namespace {
 
 glint::Scene small_scene() {
-  glint::SceneDescription d;
-  d.source = "passes";
-  d.camera.position = {0.0f, 0.0f, 10.0f};
-  glint::SphereDescription sphere;
-  sphere.radius = 3.0f;
-  d.spheres.push_back(sphere);
-  glint::SphereDescription glass;
-  glass.center = {2.0f, 1.0f, 3.0f};
-  glass.material.diffuse = 0.0f;
-  glass.material.transparent = 1.0f;
-  d.spheres.push_back(glass);
-  d.lights.push_back({{5.0f, 5.0f, 10.0f}, 100.0f, glint::Color(1.0f), 1});
-  return glint::Scene::build(d);
+  return glint::test::small_scene("passes");
 }
 
 glint::RenderSettings small_settings(int spp, int max_pass, int threads, int tile) {

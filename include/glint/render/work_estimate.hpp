@@ -27,6 +27,16 @@ struct TreeWork {
   std::uint32_t widest_sphere = kNoSphere;  ///< a sphere with that many lobes
 };
 
+/// R(max_depth) = 1 + shadow rays; R(d) = 1 + shadow rays + branching * R(d + 1), capped at
+/// 1e300 so that no depth overflows.
+inline double tree_rays_bound(int branching, int max_depth, int shadow_rays) {
+  const double per_hit = 1.0 + shadow_rays;
+  double rays = per_hit;
+  for (int depth = max_depth - 1; depth >= 0 && rays < 1e300; --depth)
+    rays = per_hit + branching * rays;
+  return std::min(rays, 1e300);
+}
+
 /// The bound for max_depth bounces, with `shadow_rays` rays traced at each diffuse hit.
 inline TreeWork estimate_tree_work(const Scene& scene, int max_depth, int shadow_rays) {
   TreeWork work;
@@ -38,12 +48,7 @@ inline TreeWork estimate_tree_work(const Scene& scene, int max_depth, int shadow
       work.widest_sphere = i;
     }
   }
-  // R(max_depth) = 1 + shadow rays; R(d) = 1 + shadow rays + branching * R(d + 1).
-  const double per_hit = 1.0 + shadow_rays;
-  double rays = per_hit;
-  for (int depth = max_depth - 1; depth >= 0 && rays < 1e300; --depth)
-    rays = per_hit + work.branching * rays;
-  work.rays_per_sample = std::min(rays, 1e300);
+  work.rays_per_sample = tree_rays_bound(work.branching, max_depth, shadow_rays);
   return work;
 }
 
@@ -63,9 +68,8 @@ void check_work(const Scene& scene, int max_depth) {
     const TreeWork work = estimate_tree_work(scene, max_depth, shadow_rays);
     if (work.rays_per_sample <= limits::max_tree_rays_per_sample) return;
     int depth_within = max_depth;
-    while (depth_within > 0 &&
-           estimate_tree_work(scene, depth_within, shadow_rays).rays_per_sample >
-               limits::max_tree_rays_per_sample)
+    while (depth_within > 0 && tree_rays_bound(work.branching, depth_within, shadow_rays) >
+                                   limits::max_tree_rays_per_sample)
       --depth_within;
     const std::string where =
         scene.sphere_line(work.widest_sphere) > 0
