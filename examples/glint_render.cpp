@@ -16,6 +16,7 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -380,7 +381,7 @@ int main(int argc, char** argv) {
     glint::RenderStart start;
     // The state of the last completed pass, for the checkpoint at the end: kept by the pass
     // callback, which sees every pass, whatever stops the render after it.
-    glint::Film last_sums;
+    glint::PixelSums last_sums;
     int last_passes = 0, last_spp = 0;
     if (resumed) {
       start = {&resumed->sums, resumed->passes_done};
@@ -444,6 +445,12 @@ int main(int argc, char** argv) {
     if (result.stats.invalid_samples > 0)
       std::fprintf(stderr, "glint-render: warning: %llu samples were NaN or infinite and dropped\n",
                    static_cast<unsigned long long>(result.stats.invalid_samples));
+    if (result.stats.clamped_pixels > 0)
+      std::fprintf(stderr,
+                   "glint-render: warning: %llu pixels have a mean beyond the float range and were "
+                   "written as the largest float (%g)\n",
+                   static_cast<unsigned long long>(result.stats.clamped_pixels),
+                   double(std::numeric_limits<float>::max()));
     if (options.checkpoint && !result.complete())
       std::fprintf(stderr,
                    "glint-render: %s holds the render so far: continue it with --resume %s\n",

@@ -107,7 +107,7 @@ if(GLINT_BASH)
   foreach(case sigint sigterm sighup second_signal sigint_quiet planted_symlinks
           hdr_fails_while_writing hdr_is_directory output_is_directory read_only_directory
           scene_is_output threads_fail checkpoint_resume checkpoint_after_kill resume_refused
-          time_limit_zero)
+          time_limit_zero huge_values)
     string(REPLACE "_" "-" name ${case})
     add_test(NAME "cli: ${name}"
              COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash ${case}

@@ -323,6 +323,28 @@ case_time_limit_zero() {
   no_temporaries
 }
 
+# Samples near the float range: a float sum of them overflowed to infinite pixels, with exit 0
+# and no word. Their sums are double now: the images are finite (and no sample is invalid).
+finite_pfm() { # FILE
+  local values
+  values=$(tail -c +$(($(head -n 3 "$1" | wc -c) + 1)) "$1" | od -An -v -tf4)
+  [[ -n $values ]] || fail "$1 holds no pixels"
+  ! grep -Eqi 'inf|nan' <<<"$values" || fail "$1 holds pixels that are not finite"
+}
+case_huge_values() {
+  printf '%s\n' 'image width=6 height=4 spp=1000 max_depth=3' 'background color=1e36,1e36,1e36' \
+    'sphere center=0,0,0 radius=1' >background.scene
+  printf '%s\n' 'image width=6 height=4 spp=4 max_depth=3' 'camera position=0,0,10 look_at=0,0,0' \
+    'sphere center=0,0,0 radius=5 emission=1e38,1e38,1e38' >lamp.scene
+  for name in background lamp; do
+    "$program" $name.scene -o $name.png --hdr $name.pfm 2>err.log || fail "$name: exit status $?"
+    ! grep -q "warning" err.log || fail "$name: a warning"
+    complete_pfm $name.pfm 6 4
+    finite_pfm $name.pfm
+  done
+  no_temporaries
+}
+
 declare -F "case_$case_name" >/dev/null || { echo "no case '$case_name'" >&2; exit 2; }
 "case_$case_name"
 echo "ok: $case_name"

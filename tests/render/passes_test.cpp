@@ -228,7 +228,7 @@ TEMPLATE_TEST_CASE("a render resumed after k passes ends bit for bit as an unint
   INFO("resumed after pass " << passes);
 
   // The sums after `passes` passes, as a checkpoint would save them.
-  glint::Film sums;
+  glint::PixelSums sums;
   glint::RenderControl first;
   first.pass_done = [&](const glint::PassReport& r) {
     sums = r.sums;
@@ -267,7 +267,7 @@ TEST_CASE("a resumed render that is stopped again holds its passes' samples", "[
   using V = glint::variants::report;
   const glint::Scene scene = small_scene();
   const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
-  glint::Film sums;
+  glint::PixelSums sums;
   glint::RenderControl first;
   first.pass_done = [&](const glint::PassReport& r) {
     sums = r.sums;
@@ -296,7 +296,7 @@ TEST_CASE("a start that does not fit the settings is refused", "[passes][resume]
   using V = glint::variants::report;
   const glint::Scene scene = small_scene();
   const glint::RenderSettings settings = small_settings(13, 4, 2, 8);  // 6 passes
-  const glint::Film right(19, 13), wrong(13, 19);
+  const glint::PixelSums right(19, 13), wrong(13, 19);
   const auto refused = [&](const glint::RenderStart& from) {
     CHECK_THROWS_AS(glint::Renderer<V>::render(scene, settings, glint::RenderControl{}, from),
                     glint::SettingsError);

@@ -36,18 +36,19 @@ glint::Checkpoint sample_checkpoint() {
   c.key = sample_key();
   c.passes_done = 7;
   c.samples_per_pixel_done = 64;
-  c.sums = glint::Film(5, 3);
-  float v = 0.25f;
+  c.sums = glint::PixelSums(5, 3);
+  double v = 0.25;
   for (int y = 0; y < 3; ++y)
-    for (int x = 0; x < 5; ++x, v *= -1.7f)
-      c.sums.at(x, y) = glint::Color(v, -0.0f, std::numeric_limits<float>::denorm_min() * float(x));
+    for (int x = 0; x < 5; ++x, v *= -1.7)
+      c.sums.at(x, y) =
+          glint::ColorSum(v, -0.0, std::numeric_limits<double>::denorm_min() * double(x));
   return c;
 }
 
-bool same_bits(const glint::Film& a, const glint::Film& b) {
+bool same_bits(const glint::PixelSums& a, const glint::PixelSums& b) {
   return a.width() == b.width() && a.height() == b.height() &&
          std::memcmp(a.pixels().data(), b.pixels().data(),
-                     a.pixels().size() * sizeof(glint::Color)) == 0;
+                     a.pixels().size() * sizeof(glint::ColorSum)) == 0;
 }
 
 /// The message of the CheckpointError that decoding `bytes` throws, or "" if none.
@@ -82,7 +83,7 @@ constexpr std::size_t kVersionAt = 8, kNameSizeAt = 20, kWidthAt = 30, kPassesAt
 TEST_CASE("a checkpoint round trip keeps every field and every bit of the sums", "[checkpoint]") {
   const glint::Checkpoint c = sample_checkpoint();
   const std::vector<char> bytes = glint::encode_checkpoint(c);
-  CHECK(bytes.size() == kSumsAt + 5 * 3 * 12 + 8);
+  CHECK(bytes.size() == kSumsAt + 5 * 3 * 24 + 8);
   CHECK(std::string(bytes.data(), 8) == "GLINTCKP");
   const glint::Checkpoint back = glint::decode_checkpoint(bytes, "ck.bin");
   CHECK(back.key.scene_hash == c.key.scene_hash);
@@ -116,10 +117,21 @@ TEST_CASE("the format is little-endian with explicit sizes", "[checkpoint]") {
   CHECK(u32(kWidthAt + 4) == 3);
   CHECK(u32(kPassesAt) == 7);
   CHECK(u32(kPassesAt + 4) == 64);
-  float first = 0.0f;
-  const std::uint32_t bits = u32(kSumsAt);
-  std::memcpy(&first, &bits, 4);
-  CHECK(first == 0.25f);
+  double first = 0.0;
+  const std::uint64_t bits = u32(kSumsAt) | std::uint64_t(u32(kSumsAt + 4)) << 32;
+  std::memcpy(&first, &bits, 8);
+  CHECK(first == 0.25);
+}
+
+TEST_CASE("a checkpoint whose sums are not finite is refused", "[checkpoint]") {
+  for (const double bad :
+       {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+        std::numeric_limits<double>::quiet_NaN()}) {
+    glint::Checkpoint c = sample_checkpoint();
+    c.sums.at(2, 1).y = bad;
+    CHECK_THAT(decode_error(glint::encode_checkpoint(c)),
+               Catch::Contains("pixel (2, 1) holds a sum that is not finite"));
+  }
 }
 
 TEST_CASE("a truncated checkpoint is refused at any length", "[checkpoint]") {
@@ -149,9 +161,9 @@ TEST_CASE("a checkpoint with a bad magic, version or header is refused", "[check
           "cannot resume from ck.bin: it is not a glint checkpoint (no GLINTCKP magic)");
   }
   SECTION("version") {
-    put32(bytes, kVersionAt, 2);
+    put32(bytes, kVersionAt, 1);  // float sums, before glint summed in double
     CHECK(decode_error(bytes) ==
-          "cannot resume from ck.bin: format version 2, this glint reads version 1");
+          "cannot resume from ck.bin: format version 1, this glint reads version 2");
   }
   SECTION("a variant name longer than any") {
     put32(bytes, kNameSizeAt, 0xffffffffu);
@@ -170,7 +182,7 @@ TEST_CASE("a checkpoint with a bad magic, version or header is refused", "[check
     CHECK_THAT(decode_error(rehashed(bytes)),
                Catch::Contains("truncated (" + std::to_string(good.size()) +
                                " bytes, the header promises " +
-                               std::to_string(kSumsAt + 4096 * 4096 * 12 + 8) + ")"));
+                               std::to_string(kSumsAt + 4096 * 4096 * 24 + 8) + ")"));
     put32(bytes, kWidthAt, 4);
     put32(bytes, kWidthAt + 4, 3);
     CHECK_THAT(decode_error(rehashed(bytes)), Catch::Contains("too long"));

@@ -3,7 +3,7 @@
 // image they belong to, so that a later run can continue it (Renderer's RenderControl::start)
 // and produce exactly the bytes an uninterrupted render would.
 //
-// The format, little-endian with explicit sizes (version 1):
+// The format, little-endian with explicit sizes (version 2; version 1 held float sums):
 //
 //   offset  size  field
 //   0       8     magic "GLINTCKP"
@@ -14,7 +14,7 @@
 //   24+n    4*9   u32 width, height, samples per pixel, max depth, max_pass_samples;
 //                 u64 seed; u32 antialias sigma (float bits)
 //   60+n    8     u32 passes done, u32 samples per pixel done
-//   68+n    12wh  f32 sums, r g b per pixel, rows from the top
+//   68+n    24wh  f64 sums, r g b per pixel, rows from the top
 //   end-8   8     u64 FNV-1a hash of every byte before it
 //
 // The image settings are stored as they are, not only hashed, so that a mismatch can be named.
@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <bit>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -33,7 +34,7 @@
 #include <vector>
 
 #include "glint/error.hpp"
-#include "glint/image/film.hpp"
+#include "glint/image/pixel_sums.hpp"
 #include "glint/render/render_settings.hpp"
 
 namespace glint {
@@ -77,11 +78,11 @@ struct Checkpoint {
   CheckpointKey key;
   int passes_done = 0;
   int samples_per_pixel_done = 0;
-  Film sums;  ///< per-pixel sums of the samples of the completed passes (PassReport::sums)
+  PixelSums sums;  ///< per-pixel sums of the samples of the completed passes (PassReport::sums)
 };
 
 inline constexpr char kCheckpointMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'K', 'P'};
-inline constexpr std::uint32_t kCheckpointVersion = 1;
+inline constexpr std::uint32_t kCheckpointVersion = 2;
 inline constexpr std::uint32_t kMaxVariantName = 64;
 
 /// 64-bit FNV-1a, continuing from `hash`: the checkpoint's content and scene hashes. Not a
@@ -100,6 +101,7 @@ namespace detail::checkpoint {
 
 inline constexpr std::size_t kFixedHeader = 8 + 4 + 8 + 4;  // up to the variant name
 inline constexpr std::size_t kSettingsAndPasses = 4 * 5 + 8 + 4 + 4 + 4;
+inline constexpr std::size_t kBytesPerPixel = 3 * 8;
 
 /// Writes fields in order into bytes sized beforehand (GCC 12 warns, wrongly, about a
 /// vector<char> growing by insert).
@@ -191,7 +193,7 @@ Header parse_header(const char* bytes, std::size_t available, std::uint64_t file
          " samples per pixel, which is no pass boundary of its settings");
   header.meta.passes_done = int(passes);
   header.meta.samples_per_pixel_done = int(spp_done);
-  header.file_size = header.size + std::uint64_t(width) * height * 12 + 8;
+  header.file_size = header.size + std::uint64_t(width) * height * kBytesPerPixel + 8;
   if (file_size != header.file_size)
     fail((file_size < header.file_size ? "it is truncated (" : "it is too long (") +
          std::to_string(file_size) + " bytes, the header promises " +
@@ -210,10 +212,10 @@ inline auto failer(const std::string& name) {
 /// The bytes of the checkpoint of a render with `key` after `passes_done` passes, when its
 /// pixels hold the sums `sums` of `samples_per_pixel_done` samples each.
 inline std::vector<char> encode_checkpoint(const CheckpointKey& key, int passes_done,
-                                           int samples_per_pixel_done, const Film& sums) {
+                                           int samples_per_pixel_done, const PixelSums& sums) {
   using namespace detail::checkpoint;
   std::vector<char> out(kFixedHeader + key.variant.size() + kSettingsAndPasses +
-                        sums.pixels().size() * 12 + 8);
+                        sums.pixels().size() * kBytesPerPixel + 8);
   Writer put{out.data()};
   put.bytes(kCheckpointMagic, sizeof kCheckpointMagic);
   put.u32(kCheckpointVersion);
@@ -227,9 +229,9 @@ inline std::vector<char> encode_checkpoint(const CheckpointKey& key, int passes_
   put.u32(std::bit_cast<std::uint32_t>(key.antialias_sigma));
   put.u32(std::uint32_t(passes_done));
   put.u32(std::uint32_t(samples_per_pixel_done));
-  for (const Color& pixel : sums.pixels())
-    for (const float v : {pixel.x, pixel.y, pixel.z})
-      put.u32(std::bit_cast<std::uint32_t>(v));
+  for (const ColorSum& pixel : sums.pixels())
+    for (const double v : {pixel.x, pixel.y, pixel.z})
+      put.u64(std::bit_cast<std::uint64_t>(v));
   put.u64(fnv1a(out.data(), out.size() - 8));
   return out;
 }
@@ -248,14 +250,18 @@ inline Checkpoint decode_checkpoint(const std::vector<char>& bytes, const std::s
   Cursor in{bytes.data() + bytes.size() - 8};
   if (in.u64() != fnv1a(bytes.data(), bytes.size() - 8))
     fail("it is damaged (its content hash does not match)");
-  c.sums = Film(c.key.width, c.key.height);
+  c.sums = PixelSums(c.key.width, c.key.height);
   in.at = bytes.data() + header.size;
   for (int y = 0; y < c.key.height; ++y)
     for (int x = 0; x < c.key.width; ++x) {
-      Color& pixel = c.sums.at(x, y);
-      pixel.x = std::bit_cast<float>(in.u32());
-      pixel.y = std::bit_cast<float>(in.u32());
-      pixel.z = std::bit_cast<float>(in.u32());
+      ColorSum& pixel = c.sums.at(x, y);
+      pixel.x = std::bit_cast<double>(in.u64());
+      pixel.y = std::bit_cast<double>(in.u64());
+      pixel.z = std::bit_cast<double>(in.u64());
+      // A render's sums of finite samples are finite.
+      if (!(std::isfinite(pixel.x) && std::isfinite(pixel.y) && std::isfinite(pixel.z)))
+        fail("pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+             ") holds a sum that is not finite");
     }
   return c;
 }

@@ -88,6 +88,8 @@ struct RenderStats {
   std::uint64_t samples = 0;  ///< samples in the image: width x height x samples per pixel done
   std::uint64_t rays = 0;     ///< camera, bounce and shadow rays
   std::uint64_t invalid_samples = 0;  ///< NaN or infinite samples, dropped (should be 0)
+  /// Pixels whose mean is beyond the float range, written as the largest float (should be 0).
+  std::uint64_t clamped_pixels = 0;
   int threads = 0;
 };
 

@@ -4,9 +4,9 @@
 // A render is a sequence of passes (pass_ends in render_settings.hpp): each pass adds the
 // next samples of every pixel to that pixel's running sum, so after every pass the sums hold
 // a complete image of k samples per pixel, and a render can stop there. A pixel's samples are
-// added in index order into one float sum that lives in the film between passes, then divided
-// once by their count: exactly render_pixel's arithmetic, so the finished image does not
-// depend on the passes. Within a pass, square tiles are handed out by one atomic counter;
+// added in index order into one double sum (image/pixel_sums.hpp) that lives between passes,
+// then divided once by their count: exactly render_pixel's arithmetic, so the finished image
+// does not depend on the passes. Within a pass, square tiles are handed out by one atomic counter;
 // each tile's pixels are written by the one thread that took it, and every sample's
 // randomness comes from hashing (pixel, sample index, seed). So the image is the same bit for
 // bit whatever the thread count or scheduling. The hot loop has no locks, no allocation, no
@@ -30,6 +30,7 @@
 #include "glint/config.hpp"
 #include "glint/error.hpp"
 #include "glint/image/film.hpp"
+#include "glint/image/pixel_sums.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/path_tracer.hpp"
 #include "glint/render/render_settings.hpp"
@@ -55,7 +56,7 @@ struct PassReport {
   int pass_count = 0;
   int samples_per_pixel = 0;
   double elapsed_seconds = 0.0;
-  const Film& sums;  ///< per-pixel sums of the samples so far; valid during the callback only
+  const PixelSums& sums;  ///< per-pixel sums of the samples so far; valid during the callback only
   /// The image so far, bit for bit what a render stopped after this pass returns.
   Film image() const;
 };
@@ -70,8 +71,9 @@ using PassCallback = std::function<bool(const PassReport&)>;
 /// the image ends bit for bit as an uninterrupted render's, whatever the thread counts of
 /// either; the callbacks see only the remaining passes.
 struct RenderStart {
-  const Film* sums = nullptr;  ///< width x height of the settings; read, and copied, at the start
-  int passes_done = 0;         ///< between 0 and the pass count; 0 without sums
+  const PixelSums* sums =
+      nullptr;          ///< width x height of the settings; read, and copied, at the start
+  int passes_done = 0;  ///< between 0 and the pass count; 0 without sums
 };
 
 /// How a caller follows and stops a render. Every callback runs on the calling thread, never
@@ -84,17 +86,8 @@ struct RenderControl {
   const std::atomic<bool>* stop = nullptr;
 };
 
-/// The mean image of per-pixel sums of `samples` samples each (the division render_pixel does).
-inline Film mean_image(const Film& sums, int samples) {
-  Film image(sums.width(), sums.height());
-  for (int y = 0; y < sums.height(); ++y)
-    for (int x = 0; x < sums.width(); ++x)
-      image.at(x, y) = sums.at(x, y) / float(samples);
-  return image;
-}
-
 inline Film PassReport::image() const {
-  return mean_image(sums, samples_per_pixel);
+  return mean_image(sums, samples_per_pixel).film;
 }
 
 /// The first sphere whose shading kind variant C's SphereShading policy does not support.
@@ -154,12 +147,9 @@ class Renderer {
     const std::vector<int> ends = pass_ends(settings.samples_per_pixel, settings.max_pass_samples);
     const std::size_t first_pass = check_start(from, settings, ends.size());
 
-    // The film holds each pixel's running sum until the end, when it is divided.
-    RenderResult result{from.sums ? *from.sums : Film(settings.width, settings.height),
-                        {},
-                        first_pass ? ends[first_pass - 1] : 0,
-                        int(first_pass),
-                        int(ends.size())};
+    PixelSums sums = from.sums ? *from.sums : PixelSums(settings.width, settings.height);
+    RenderResult result{
+        {}, {}, first_pass ? ends[first_pass - 1] : 0, int(first_pass), int(ends.size())};
     const Camera camera(scene.camera(), settings.width, settings.height);
     const PathTracer<C> tracer(scene, settings.max_depth);
 
@@ -180,8 +170,7 @@ class Renderer {
       for (int t = 0; t < thread_count; ++t) {
         try {
           workers.emplace_back([&, t] {
-            work(schedule, grid, ends, tracer, camera, settings, result.film,
-                 counters[std::size_t(t)]);
+            work(schedule, grid, ends, tracer, camera, settings, sums, counters[std::size_t(t)]);
           });
         } catch (const std::system_error& error) {
           throw Error("cannot start " + std::to_string(thread_count) +
@@ -211,16 +200,19 @@ class Renderer {
         if (pass + 1 < ends.size()) report(false);
         if (control.pass_done &&
             !control.pass_done(PassReport{result.passes_done, result.pass_count,
-                                          result.samples_per_pixel, elapsed(), result.film}))
+                                          result.samples_per_pixel, elapsed(), sums}))
           break;
       }
       report(true);
     }  // the workers are told to stop, and join here
 
-    if (result.samples_per_pixel > 0)
-      for (int y = 0; y < settings.height; ++y)
-        for (int x = 0; x < settings.width; ++x)
-          result.film.at(x, y) = result.film.at(x, y) / float(result.samples_per_pixel);
+    if (result.samples_per_pixel > 0) {
+      MeanImage image = mean_image(sums, result.samples_per_pixel);
+      result.film = std::move(image.film);
+      result.stats.clamped_pixels = image.clamped_pixels;
+    } else {
+      result.film = Film(settings.width, settings.height);
+    }
     for (const PaddedCounters& c : counters) {
       result.stats.rays += c.counters.rays;
       result.stats.invalid_samples += c.counters.invalid_samples;
@@ -245,9 +237,10 @@ class Renderer {
                             int samples) {
     std::atomic<std::uint64_t> progress{0};
     std::uint64_t done = 0;
-    const Color sum = add_samples(tracer, camera, settings, x, y, 0, samples, Color(0.0f), counters,
-                                  progress, done);
-    return sum / float(samples);
+    const ColorSum sum = add_samples(tracer, camera, settings, x, y, 0, samples, ColorSum(0.0),
+                                     counters, progress, done);
+    bool out_of_range = false;
+    return mean_color(sum, samples, out_of_range);
   }
 
  private:
@@ -375,7 +368,7 @@ class Renderer {
 
   static void work(Schedule& schedule, const TileGrid& grid, const std::vector<int>& ends,
                    const PathTracer<C>& tracer, const Camera& camera,
-                   const RenderSettings& settings, Film& sums, PaddedCounters& mine) {
+                   const RenderSettings& settings, PixelSums& sums, PaddedCounters& mine) {
     std::uint64_t samples = 0;
     for (std::optional<std::size_t> item = schedule.next(); item; item = schedule.next()) {
       const std::size_t pass = *item / schedule.tiles();
@@ -389,7 +382,7 @@ class Renderer {
   /// Adds samples [first, last) of every pixel of the tile to the pixel's sum.
   static void render_tile(const PathTracer<C>& tracer, const Camera& camera,
                           const RenderSettings& settings, const Tile& tile, int first, int last,
-                          Film& sums, PaddedCounters& mine, std::uint64_t& samples) {
+                          PixelSums& sums, PaddedCounters& mine, std::uint64_t& samples) {
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x)
         sums.at(x, y) = add_samples(tracer, camera, settings, x, y, first, last, sums.at(x, y),
@@ -408,9 +401,9 @@ class Renderer {
 #else
   [[gnu::noinline]]
 #endif
-  static Color
+  static ColorSum
   add_samples(const PathTracer<C>& tracer, const Camera& camera, const RenderSettings& settings,
-              int x, int y, int first, int last, Color sum, TraceCounters& counters,
+              int x, int y, int first, int last, ColorSum sum, TraceCounters& counters,
               std::atomic<std::uint64_t>& progress, std::uint64_t& samples) {
     typename C::sampler sampler;
     for (int s = first; s < last; ++s) {
@@ -421,7 +414,7 @@ class Renderer {
         film += C::antialiasing::offset(sampler.next_2d(), settings.antialias_sigma);
       const Color sample = tracer.radiance(camera.ray_through(film), sampler, counters);
       if (std::isfinite(sample.x) && std::isfinite(sample.y) && std::isfinite(sample.z))
-        sum += sample;
+        sum += ColorSum(sample);
       else
         ++counters.invalid_samples;
     }
