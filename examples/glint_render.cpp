@@ -25,6 +25,7 @@
 
 #include "glint/glint.hpp"
 #include "glint/io/checkpoint.hpp"
+#include "load_progress.hpp"
 #include "progress_printer.hpp"
 
 #ifndef GLINT_VARIANT
@@ -354,7 +355,15 @@ int main(int argc, char** argv) {
                                        ": it is also the image " + *image);
     }
 
-    const glint::Scene scene = glint::Scene::build(glint::read_scene_file(options.scene));
+    const glint::Scene scene = [&] {
+      glint::cli::LoadProgress loading(!options.quiet, options.scene);
+      const glint::SceneDescription description =
+          glint::read_scene_file(options.scene, loading.reader_callback());
+      loading.building(description.spheres.size());
+      glint::Scene built = glint::Scene::build(description);
+      loading.finished(built.sphere_count());
+      return built;
+    }();
     glint::check_supported<Variant>(scene);
 
     glint::RenderSettings settings = glint::RenderSettings::from(scene);

@@ -5,6 +5,7 @@
 // elapsed times chosen so that every number printed is exact.
 
 #include "progress_printer.hpp"
+#include "load_progress.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -167,4 +168,81 @@ TEST_CASE("on a terminal, progress is one line redrawn at most every 0.1 s", "[c
         "\r[  6%] 0.5 s elapsed, ETA 7.5 s   "
         "\r[ 18%] 0.7 s elapsed, ETA 3.0 s   "
         "\r[100%] 0.8 s elapsed, ETA 0.0 s   \n");
+}
+
+// glint-render's report while a scene loads (examples/load_progress.hpp).
+
+namespace {
+
+/// Everything written so far to `file` (a tmpfile another thread prints to).
+std::string contents(std::FILE* file) {
+  std::string text(1 << 16, '\0');
+  const ssize_t got = pread(fileno(file), text.data(), text.size(), 0);
+  text.resize(got > 0 ? std::size_t(got) : 0);
+  return text;
+}
+
+/// Waits, up to a minute (a loaded machine may not run the printer for a while), until `file`
+/// holds `text`.
+bool eventually_holds(std::FILE* file, const std::string& text) {
+  for (int i = 0; i < 6000; ++i) {
+    if (contents(file).find(text) != std::string::npos) return true;
+    usleep(10000);
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("load stages are described with their progress", "[load-progress]") {
+  using glint::cli::describe_load_stage;
+  using glint::cli::LoadStage;
+  CHECK(describe_load_stage(LoadStage::reading, 45) == "reading 45%");
+  CHECK(describe_load_stage(LoadStage::reading, -1) == "reading");
+  CHECK(describe_load_stage(LoadStage::parsing, 0) == "parsing 0%");
+  CHECK(describe_load_stage(LoadStage::building, 1000000) ==
+        "building the scene of 1000000 spheres");
+}
+
+TEST_CASE("a slow load is reported stage by stage in a log, then its end", "[load-progress]") {
+  std::FILE* file = std::tmpfile();
+  REQUIRE(file);
+  {
+    glint::cli::LoadProgress loading(true, "big.scene", file, std::chrono::milliseconds(0),
+                                     /*terminal=*/false);
+    const glint::SceneReadCallback reader = loading.reader_callback();
+    reader({glint::SceneReadProgress::Stage::reading, 0, 0});
+    CHECK(eventually_holds(file, "loading big.scene: reading ("));
+    reader({glint::SceneReadProgress::Stage::parsing, 57, 100});
+    CHECK(eventually_holds(file, "loading big.scene: parsing 50% ("));  // a line per tenth
+    loading.building(12);
+    CHECK(eventually_holds(file, "loading big.scene: building the scene of 12 spheres ("));
+    loading.finished(12);
+  }
+  const std::string text = contents(file);
+  std::fclose(file);
+  CHECK_THAT(text, Catch::Matches("(loading big\\.scene: [a-z0-9 %]+ \\([0-9.]+ s\\)\n)+"
+                                  "loaded big\\.scene: 12 spheres in [0-9.]+ s\n"));
+  // One line per stage and tenth, however often the printer woke up.
+  CHECK(text.find("parsing 50%") == text.rfind("parsing 50%"));
+}
+
+TEST_CASE("a quick load prints nothing", "[load-progress]") {
+  std::FILE* file = std::tmpfile();
+  REQUIRE(file);
+  {
+    glint::cli::LoadProgress loading(true, "small.scene", file, std::chrono::hours(1), false);
+    loading.reader_callback()({glint::SceneReadProgress::Stage::parsing, 1, 2});
+    loading.building(3);
+    usleep(300000);  // the printer wakes up a few times, and stays silent
+    loading.finished(3);
+  }
+  {
+    glint::cli::LoadProgress quiet(false, "small.scene", file, std::chrono::milliseconds(0), false);
+    quiet.building(3);
+    usleep(300000);
+    quiet.finished(3);
+  }
+  CHECK(contents(file).empty());
+  std::fclose(file);
 }

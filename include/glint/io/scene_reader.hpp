@@ -49,6 +49,17 @@ inline constexpr std::size_t kMaxSceneLineLength = 1 << 16;
 /// (/dev/zero, `yes |`) cannot exhaust memory. Ten million spheres take about 700 MB.
 inline constexpr std::uintmax_t kMaxSceneFileSize = std::uintmax_t{1} << 30;
 
+/// How far reading a scene has got, for a progress display: `done` of `total` bytes of the file
+/// read (total 0 when the size is not known beforehand, as for a pipe), then of its text parsed
+/// and checked.
+struct SceneReadProgress {
+  enum class Stage { reading, parsing } stage = Stage::reading;
+  std::uint64_t done = 0;
+  std::uint64_t total = 0;
+};
+/// Called on the reading thread, about every mebibyte read and every 65536 lines parsed.
+using SceneReadCallback = std::function<void(const SceneReadProgress&)>;
+
 namespace detail::scene_reader {
 
 /// Input quoted in an error message: control and non-ASCII bytes escaped, long text cut, so
@@ -149,7 +160,10 @@ struct StringHash {
 
 class Parser {
  public:
-  explicit Parser(std::string source) { scene_.source = std::move(source); }
+  explicit Parser(std::string source, SceneReadCallback progress = {})
+      : progress_(std::move(progress)) {
+    scene_.source = std::move(source);
+  }
 
   SceneDescription parse(std::string_view text) {
     // A UTF-8 byte order mark, as some Windows editors write, is not part of the first line.
@@ -162,6 +176,8 @@ class Parser {
       if (end == std::string_view::npos) end = text.size();
       if (line_ == INT_MAX) fail("too many lines");
       ++line_;
+      if (progress_ && line_ % kLinesPerReport == 0)
+        progress_({SceneReadProgress::Stage::parsing, start, text.size()});
       parse_line(text.substr(start, end - start));
       start = end + 1;
     }
@@ -484,6 +500,9 @@ class Parser {
     fail(detail::concat({"unknown shading ", quoted(text), " (expected ", expected, ")"}));
   }
 
+  static constexpr int kLinesPerReport = 1 << 16;
+
+  SceneReadCallback progress_;
   SceneDescription scene_;
   int line_ = 0;
   std::vector<std::string_view> tokens_;  // reused across lines: no allocation per line
@@ -493,13 +512,15 @@ class Parser {
 }  // namespace detail::scene_reader
 
 /// Parses and validates a scene; `source` names it in error messages ("FILE:LINE: error: ...").
-inline SceneDescription read_scene_text(std::string_view text, std::string source = "<scene>") {
-  return detail::scene_reader::Parser(std::move(source)).parse(text);
+inline SceneDescription read_scene_text(std::string_view text, std::string source = "<scene>",
+                                        const SceneReadCallback& progress = {}) {
+  return detail::scene_reader::Parser(std::move(source), progress).parse(text);
 }
 
 /// Reads a scene file; errors name the path as given. A file that cannot be opened or read
-/// is a SceneError with line 0.
-inline SceneDescription read_scene_file(const std::filesystem::path& path) {
+/// is a SceneError with line 0. `progress`, if set, follows the reading and the parsing.
+inline SceneDescription read_scene_file(const std::filesystem::path& path,
+                                        const SceneReadCallback& progress = {}) {
   const std::string source = path.string();
   const auto fail = [&](const std::string& problem) { throw SceneError(source, 0, problem); };
   std::error_code ec;
@@ -510,12 +531,17 @@ inline SceneDescription read_scene_file(const std::filesystem::path& path) {
                                                              &std::fclose);
   if (!file) fail(detail::concat({"cannot open file: ", std::generic_category().message(errno)}));
   std::string text;
+  std::uint64_t expected_size = 0;  // unknown for a pipe or a device
   // Reserved from the size of a regular file, so that a big scene is copied only once.
   if (const std::uintmax_t size = std::filesystem::file_size(path, ec);
-      !ec && size <= kMaxSceneFileSize)
+      !ec && size <= kMaxSceneFileSize) {
     text.reserve(static_cast<std::size_t>(size));
+    expected_size = size;
+  }
   char buffer[1 << 16];
-  while (true) {
+  for (std::size_t reads = 1;; ++reads) {
+    if (progress && reads % 16 == 0)
+      progress({SceneReadProgress::Stage::reading, text.size(), expected_size});
     const std::size_t got = std::fread(buffer, 1, sizeof buffer, file.get());
     // Binary input (an image, /dev/zero) is refused at its first NUL byte, with the line the
     // parser would name, rather than after reading up to the size limit.
@@ -539,7 +565,7 @@ inline SceneDescription read_scene_file(const std::filesystem::path& path) {
       break;
     }
   }
-  return read_scene_text(text, source);
+  return read_scene_text(text, source, progress);
 }
 
 }  // namespace glint
