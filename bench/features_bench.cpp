@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "glint/generate/random_scene.hpp"
@@ -376,14 +377,25 @@ glint::SphereDescription glass_sphere(Vec3 center, float radius, int line) {
   return s;
 }
 
-/// Concentric glass shells (every pair nested: the sweep's worst case, n^2/2 pairs), or glass
-/// beads on a grid in a plane (disjoint: the sweep's best case).
-glint::SceneDescription inclusion_scene(std::size_t count, bool nested) {
+enum InclusionKind { kDisjoint = 0, kConcentric = 1, kRandom = 2 };
+
+/// Glass beads on a grid in a plane (disjoint), concentric glass shells (every pair nested: the
+/// reference builder's worst case, n^2/2 pairs), or a random scene of the generator (half of it
+/// glass, some of it nested, walls included) as dense as its million-sphere example.
+glint::SceneDescription inclusion_scene(std::size_t count, InclusionKind kind) {
+  if (kind == kRandom) {
+    glint::RandomSceneParameters parameters;
+    parameters.sphere_count = static_cast<int>(count);
+    parameters.domain_size = 2000.0f * static_cast<float>(std::cbrt(double(count) / 1e6));
+    parameters.min_radius = 1.0f;
+    parameters.max_radius = 8.0f;
+    return glint::generate_random_scene(parameters).scene;
+  }
   glint::SceneDescription scene;
   scene.spheres.reserve(count);
   const auto side = static_cast<std::size_t>(std::ceil(std::sqrt(double(count))));
   for (std::size_t i = 0; i < count; ++i) {
-    if (nested)
+    if (kind == kConcentric)
       scene.spheres.push_back(glass_sphere(Vec3(0.0f), 1.0f + float(i), int(i) + 1));
     else
       scene.spheres.push_back(glass_sphere(
@@ -392,21 +404,33 @@ glint::SceneDescription inclusion_scene(std::size_t count, bool nested) {
   return scene;
 }
 
+/// build_inclusion_tree (builder 0: the reference's loop while pairs are few, then the fast
+/// builder), build_inclusion_tree_reference (1), or the fast builder alone (2).
 void BM_InclusionTreeBuild(benchmark::State& state) {
   const auto count = static_cast<std::size_t>(state.range(0));
-  const bool nested = state.range(1) != 0;
-  const glint::SceneDescription scene = inclusion_scene(count, nested);
+  const auto kind = static_cast<InclusionKind>(state.range(1));
+  const auto builder = state.range(2);
+  const glint::SceneDescription scene = inclusion_scene(count, kind);
   for (auto _ : state) {
-    glint::InclusionTree tree = glint::build_inclusion_tree(scene);
+    glint::InclusionTree tree = builder == 1   ? glint::build_inclusion_tree_reference(scene)
+                                : builder == 2 ? *glint::detail::build_inclusion_tree_fast(scene)
+                                               : glint::build_inclusion_tree(scene);
     benchmark::DoNotOptimize(tree.outside_ior.data());
     benchmark::ClobberMemory();
   }
-  state.SetItemsProcessed(state.iterations() * state.range(0));
-  state.SetLabel(nested ? "nested" : "disjoint");
+  state.SetItemsProcessed(state.iterations() * std::int64_t(scene.spheres.size()));
+  state.SetLabel(std::string(kind == kRandom       ? "random"
+                             : kind == kConcentric ? "concentric"
+                                                   : "disjoint") +
+                 (builder == 1   ? ", reference"
+                  : builder == 2 ? ", fast builder alone"
+                                 : ""));
 }
 BENCHMARK(BM_InclusionTreeBuild)
-    ->ArgNames({"spheres", "nested"})
-    ->ArgsProduct({{100, 1000, 10000}, {0, 1}})
+    ->ArgNames({"spheres", "kind", "builder"})
+    ->ArgsProduct({{100, 1000, 10000}, {kDisjoint}, {0, 1, 2}})
+    ->ArgsProduct({{100, 1000, 10000, 30000}, {kConcentric}, {0, 1, 2}})
+    ->ArgsProduct({{100000}, {kRandom}, {0, 1, 2}})
     ->Unit(benchmark::kMicrosecond);
 
 // ---------------------------------------------------------------------------------------------

@@ -355,3 +355,230 @@ TEST_CASE("random overlapping configurations are rejected exactly when the refer
   CHECK(rejected > 10);
   CHECK(accepted > 10);
 }
+
+// ---- the fast builder against the reference builder ----------------------------------------
+
+namespace {
+
+/// Both builders on one scene: the same parent and outside index for every sphere, or the same
+/// SceneError (message and line). With `fast`, the fast builder must also have answered by
+/// itself rather than by falling back on the reference.
+void require_same_as_reference(const glint::SceneDescription& scene, bool fast = true) {
+  std::string reference_error, error;
+  int reference_line = -1, line = -1;
+  glint::InclusionTree reference, tree;
+  try {
+    reference = glint::build_inclusion_tree_reference(scene);
+  } catch (const glint::SceneError& e) {
+    reference_error = e.what();
+    reference_line = e.line();
+  }
+  try {
+    tree = glint::build_inclusion_tree(scene);
+  } catch (const glint::SceneError& e) {
+    error = e.what();
+    line = e.line();
+  }
+  REQUIRE(error == reference_error);
+  REQUIRE(line == reference_line);
+  if (!reference_error.empty()) return;
+  REQUIRE(tree.parent.size() == scene.spheres.size());
+  for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
+    INFO("sphere " << i);
+    REQUIRE(tree.parent[i] == reference.parent[i]);
+    REQUIRE(tree.outside_ior[i] == reference.outside_ior[i]);
+  }
+  if (fast) REQUIRE(glint::detail::build_inclusion_tree_fast(scene).has_value());
+}
+
+void shuffle(glint::Pcg32& rng, std::vector<glint::SphereDescription>& spheres) {
+  for (std::size_t i = spheres.size(); i > 1; --i)
+    std::swap(spheres[i - 1], spheres[rng.next_u32() % i]);
+}
+
+/// Lines follow the list, as the reader numbers them.
+glint::SceneDescription numbered(std::vector<glint::SphereDescription> spheres,
+                                 float medium = 1.0f) {
+  for (std::size_t i = 0; i < spheres.size(); ++i)
+    spheres[i].line = int(i) + 10;
+  return scene_of(std::move(spheres), medium);
+}
+
+/// `count` glass shells around `center`, radii first + k * step, with a tiny opaque sphere
+/// between each pair (in the glass of the larger shell, on the surface of neither).
+std::vector<glint::SphereDescription> onion(Vec3 center, int count, float first, float step,
+                                            glint::Pcg32& rng) {
+  std::vector<glint::SphereDescription> spheres;
+  for (int k = 0; k < count; ++k) {
+    const float radius = first + float(k) * step;
+    spheres.push_back(glass(center, radius, uniform(rng, 1.0f, 2.5f)));
+    if (k > 0) spheres.push_back(opaque(center + Vec3(radius - 0.5f * step, 0, 0), 0.1f * step));
+  }
+  return spheres;
+}
+
+}  // namespace
+
+TEST_CASE("inclusion tree equals the reference on random nested scenes", "[inclusion]") {
+  for (const std::uint64_t seed : {1u, 2u, 3u, 4u, 5u}) {
+    glint::Pcg32 rng(seed, 11u);
+    for (int trial = 0; trial < 6; ++trial) {
+      INFO("seed " << seed << ", trial " << trial);
+      glint::SceneDescription scene = random_scene(rng, 50 + 60 * trial, true);
+      require_same_as_reference(scene);
+      shuffle(rng, scene.spheres);
+      require_same_as_reference(scene);
+    }
+  }
+}
+
+TEST_CASE("inclusion tree equals the reference on concentric shells", "[inclusion]") {
+  glint::Pcg32 rng(8u, 12u);
+  SECTION("one onion, outermost first, innermost first, shuffled") {
+    std::vector<glint::SphereDescription> spheres = onion({1, 2, 3}, 300, 1.0f, 1.0f, rng);
+    require_same_as_reference(numbered(spheres));
+    std::reverse(spheres.begin(), spheres.end());
+    require_same_as_reference(numbered(spheres));
+    shuffle(rng, spheres);
+    require_same_as_reference(numbered(spheres, 1.2f));
+  }
+  SECTION("shells of slowly growing radius, many per power of two") {
+    require_same_as_reference(numbered(onion({0, 0, 0}, 400, 100.0f, 0.05f, rng)));
+  }
+  SECTION("shells whose centres drift, each still inside the next") {
+    std::vector<glint::SphereDescription> spheres;
+    Vec3 center(0.0f);
+    for (int k = 0; k < 300; ++k) {
+      const float radius = 1.0f + 0.5f * float(k);
+      spheres.push_back(glass(center, radius, 1.5f));
+      // The next shell (radius + 0.5) still contains this one with a margin of 0.2.
+      center += Vec3(uniform(rng, -0.17f, 0.17f), uniform(rng, -0.17f, 0.17f), 0.0f);
+    }
+    shuffle(rng, spheres);
+    require_same_as_reference(numbered(spheres));
+  }
+  SECTION("an onion beside a heap of beads, and beads between its shells") {
+    std::vector<glint::SphereDescription> spheres = onion({0, 0, 0}, 200, 1.0f, 0.05f, rng);
+    for (int k = 0; k < 300; ++k) {
+      // Beads in the shell between radius 12 and 20 of a second onion at x = 30, and outside
+      // the first onion, whose outer radius is 10.95.
+      const Vec3 direction = glm::normalize(
+          Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)) + Vec3(1e-3f));
+      const float distance = uniform(rng, 12.0f, 20.0f);
+      spheres.push_back(glass(direction * distance, 0.02f, 1.7f));
+    }
+    const auto second = onion({60, 0, 0}, 100, 1.0f, 0.3f, rng);
+    spheres.insert(spheres.end(), second.begin(), second.end());
+    // The beads may overlap one another; then both builders must name the same pair.
+    require_same_as_reference(numbered(spheres), false);
+  }
+  SECTION("several onions inside one glass block") {
+    std::vector<glint::SphereDescription> spheres = {glass({0, 0, 0}, 500, 1.33f)};
+    for (int o = 0; o < 8; ++o) {
+      const auto shells =
+          onion({float(o % 2) * 200 - 100, float(o / 2 % 2) * 200 - 100, float(o / 4) * 200 - 100},
+                60, 0.5f, 1.0f, rng);
+      spheres.insert(spheres.end(), shells.begin(), shells.end());
+    }
+    shuffle(rng, spheres);
+    require_same_as_reference(numbered(spheres));
+  }
+}
+
+TEST_CASE("inclusion tree equals the reference on edge cases", "[inclusion]") {
+  glint::Pcg32 rng(21u, 13u);
+  SECTION("many disjoint equal spheres, touching their neighbours") {
+    std::vector<glint::SphereDescription> spheres;
+    for (int x = 0; x < 12; ++x)
+      for (int y = 0; y < 12; ++y)
+        for (int z = 0; z < 4; ++z) {
+          const Vec3 center(2.0f * float(x), 2.0f * float(y), 2.0f * float(z));
+          spheres.push_back((x + y + z) % 3 == 0 ? opaque(center, 1.0f)
+                                                 : glass(center, 1.0f, 1.5f));
+        }
+    require_same_as_reference(numbered(spheres));
+  }
+  SECTION("internally tangent chains and externally tangent siblings") {
+    std::vector<glint::SphereDescription> spheres;
+    for (int k = 0; k < 10; ++k) {  // radius 2^k, all touching the plane x = 1024 from inside
+      const float radius = std::ldexp(1.0f, k);
+      spheres.push_back(glass({1024.0f - radius, 0, 0}, radius, 1.1f + 0.1f * float(k)));
+      spheres.push_back(opaque({1024.0f - radius, 0, 0}, 0.25f));
+    }
+    spheres.push_back(glass({1020, 0, 0}, 2, 2.0f));  // tangent to the sphere of radius 4
+    spheres.push_back(glass({1016, 0, 0}, 2, 2.0f));  // and externally to the previous one
+    spheres.push_back(opaque({1018, 0, 0}, 1.0f));    // opaque, cutting both
+    require_same_as_reference(numbered(spheres));
+    shuffle(rng, spheres);
+    require_same_as_reference(numbered(spheres));
+  }
+  SECTION("duplicates: opaque ones are fine, transparent ones are rejected alike") {
+    std::vector<glint::SphereDescription> spheres = {glass({0, 0, 0}, 10, 1.5f)};
+    for (int k = 0; k < 50; ++k)
+      spheres.push_back(opaque({1, 1, 1}, 2));
+    for (int k = 0; k < 50; ++k)
+      spheres.push_back(opaque({0, 0, 0}, 10));
+    spheres.push_back(glass({1, 1, 1}, 2, 1.2f));
+    require_same_as_reference(numbered(spheres));
+    spheres.push_back(glass({1, 1, 1}, 2, 1.3f));
+    require_same_as_reference(numbered(spheres), false);
+  }
+  SECTION("walls of radius 1e5 holding everything, or nothing") {
+    glint::SceneDescription scene = random_scene(rng, 200, true);
+    std::vector<glint::SphereDescription> spheres = scene.spheres;
+    spheres.push_back(glass({100, 0, 0}, 1e5f, 1.05f));  // around the whole strip
+    spheres.push_back(opaque({100, 1e5f + 100, 0}, 1e5f));
+    spheres.push_back(glass({100, -1e5f - 100, 0}, 1e5f, 1.4f));  // clear of everything
+    spheres.push_back(glass({100, -1e5f - 100, 0}, 5e4f, 1.3f));  // inside that one
+    require_same_as_reference(numbered(spheres));
+    shuffle(rng, spheres);
+    require_same_as_reference(numbered(spheres));
+  }
+  SECTION("radii from 1e-3 to 1e5") {
+    std::vector<glint::SphereDescription> spheres = {glass({0, 0, 0}, 1e5f, 1.2f)};
+    for (int k = 0; k < 200; ++k) {
+      const float radius = std::pow(10.0f, uniform(rng, -3.0f, 1.0f));
+      const Vec3 center(uniform(rng, -500, 500), uniform(rng, -500, 500), uniform(rng, -500, 500));
+      spheres.push_back(glass(center, radius, 1.5f));
+      spheres.push_back(glass(center, 0.5f * radius, 1.0f));
+      spheres.push_back(opaque(center + Vec3(0.75f * radius, 0, 0), 0.1f * radius));
+    }
+    require_same_as_reference(numbered(spheres), false);  // rare random overlaps allowed
+  }
+}
+
+TEST_CASE("inclusion tree names the same overlapping pair as the reference", "[inclusion]") {
+  glint::Pcg32 rng(5u, 14u);
+  int rejected = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    INFO("trial " << trial);
+    glint::SceneDescription scene = random_scene(rng, 2 + trial % 40, false);
+    if (reference_rejects(scene)) ++rejected;
+    require_same_as_reference(scene, false);
+  }
+  CHECK(rejected > 20);
+  // A bead cutting one shell of a deep nest: near its bottom, in its middle (where the shells
+  // of one power of two of radius form a long chain), at its top.
+  for (const float radius : {1.2f, 1.0f, 6.0f, 6.6f, 10.95f}) {
+    INFO("bead on the shell of radius " << radius);
+    std::vector<glint::SphereDescription> spheres = onion({0, 0, 0}, 200, 1.0f, 0.05f, rng);
+    spheres.push_back(glass({radius, 0, 0}, 0.01f, 1.5f));
+    require_same_as_reference(numbered(spheres), false);
+    CHECK_THROWS_AS(glint::build_inclusion_tree(numbered(spheres)), glint::SceneError);
+  }
+  // A sphere inside the first of two nested spheres of a level, cutting the second.
+  require_same_as_reference(
+      numbered({glass({0, 0, 0}, 10, 1.5f), glass({0, 0, 0}, 9, 1.2f), glass({9, 0, 0}, 1, 1.7f)}),
+      false);
+}
+
+TEST_CASE("inclusion tree of ten thousand concentric shells", "[inclusion]") {
+  // The reference's worst case (n^2/2 nested pairs); here each shell's parent is the next one.
+  std::vector<glint::SphereDescription> spheres;
+  for (int k = 0; k < 10000; ++k)
+    spheres.push_back(glass({0, 0, 0}, 1.0f + float(k), 1.5f));
+  const auto tree = glint::build_inclusion_tree(scene_of(spheres));
+  for (std::size_t k = 0; k + 1 < spheres.size(); ++k)
+    REQUIRE(tree.parent[k] == k + 1);
+  CHECK(tree.parent.back() == glint::kNoParent);
+}

@@ -5,15 +5,25 @@
 // spheres are disjoint or nested, so this is also where that rule is enforced.
 //
 // Opaque spheres have no inside medium and take no part: they may overlap anything.
+//
+// Two builders give the same tree: build_inclusion_tree_reference classifies every pair of
+// spheres whose boxes meet (n^2/2 pairs for concentric shells), and build_inclusion_tree, which
+// does the same while the pairs are few and otherwise files the spheres in a grid of nested
+// chains (detail/nesting_grid.hpp), O(n log n) whatever the nesting depth.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
+#include <limits>
 #include <numeric>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "glint/geometry/sphere_bvh.hpp"
+#include "glint/scene/detail/nesting_grid.hpp"
 #include "glint/scene/scene_description.hpp"
 #include "glint/scene/scene_error.hpp"
 
@@ -46,10 +56,12 @@ struct InclusionTree {
   std::vector<float> outside_ior;
 };
 
-/// Builds the tree; throws SceneError naming both lines if two transparent spheres partially
-/// overlap. Candidate pairs come from a bounding volume hierarchy over the transparent spheres,
-/// so the cost is about n log n plus the number of nested or touching pairs, not n^2.
-inline InclusionTree build_inclusion_tree(const SceneDescription& scene) {
+namespace detail {
+
+/// The reference builder's work, given up (nullopt) once it has met more than `budget` pairs,
+/// which is checked before each sphere: so it costs at most the budget plus one sphere's pairs.
+inline std::optional<InclusionTree> build_inclusion_tree_pairwise(const SceneDescription& scene,
+                                                                  std::size_t budget) {
   const auto& spheres = scene.spheres;
   const std::size_t n = spheres.size();
   InclusionTree tree;
@@ -64,7 +76,9 @@ inline InclusionTree build_inclusion_tree(const SceneDescription& scene) {
   const SphereBvh hierarchy(std::move(glass));
 
   std::vector<std::uint32_t> pending;
+  std::size_t met = 0;
   for (std::size_t index = 0; index < n; ++index) {
+    if (met > budget) return std::nullopt;
     const auto i = static_cast<std::uint32_t>(index);
     const SphereDescription& inner = spheres[i];
     // A transparent sphere must meet every glass sphere its box overlaps, to find partial
@@ -74,6 +88,7 @@ inline InclusionTree build_inclusion_tree(const SceneDescription& scene) {
     const Vec3 reach(inner.material.is_transparent() ? inner.radius : 0.0f);
     std::uint32_t& parent = tree.parent[i];
     const auto visit = [&](std::uint32_t j) {
+      ++met;
       if (j == i) return;
       const SphereDescription& outer = spheres[j];
       switch (classify_spheres(inner, outer)) {
@@ -105,6 +120,209 @@ inline InclusionTree build_inclusion_tree(const SceneDescription& scene) {
   for (std::size_t i = 0; i < n; ++i)
     if (tree.parent[i] != kNoParent) tree.outside_ior[i] = spheres[tree.parent[i]].material.ior;
   return tree;
+}
+
+}  // namespace detail
+
+/// The reference builder, and the first implementation: every pair of spheres whose boxes meet,
+/// found with a bounding volume hierarchy over the transparent spheres, so the cost is about
+/// n log n plus the number of nested or touching pairs: n^2/2 for concentric shells. It defines
+/// the result (and, where two transparent spheres partially overlap, the SceneError) that
+/// build_inclusion_tree must reproduce; that one falls back on it where it cannot vouch for its
+/// own arithmetic, and the tests compare the two.
+inline InclusionTree build_inclusion_tree_reference(const SceneDescription& scene) {
+  return *detail::build_inclusion_tree_pairwise(scene, std::numeric_limits<std::size_t>::max());
+}
+
+namespace detail {
+
+/// How the reference sees a transparent sphere q from sphere s: it meets q only where q's box
+/// overlaps s's box in float (for an opaque s, where q's box holds s's centre), then asks
+/// classify_spheres. `container`: q is one of s's containers; `clear`: q is disjoint from s;
+/// `other`: anything else (an overlap, or a containment that rounding made odd).
+enum class Seen { container, clear, other };
+
+/// True where classify_spheres would find the spheres disjoint because they are far apart along
+/// one axis (its distance is at least that axis's, up to a relative 1e-15): most pairs a query
+/// meets, told apart without a square root.
+inline bool far_apart(const Vec3& a, float ra, const Vec3& b, float rb) {
+  const double far = (double(ra) + rb) * (1.0 + 1e-9);
+  return std::abs(double(a.x) - b.x) > far || std::abs(double(a.y) - b.y) > far ||
+         std::abs(double(a.z) - b.z) > far;
+}
+
+inline Seen seen_from(const SphereDescription& s, const SphereDescription& q) {
+  if (far_apart(s.center, s.radius, q.center, q.radius)) return Seen::clear;
+  const SphereRelation relation = classify_spheres(s, q);
+  if (relation == SphereRelation::disjoint) return Seen::clear;
+  if (relation != SphereRelation::first_inside_second) return Seen::other;
+  const Vec3 reach(s.material.is_transparent() ? s.radius : 0.0f);
+  const Vec3 lower = s.center - reach, upper = s.center + reach;
+  const Vec3 r(q.radius);
+  const bool meets = glm::all(glm::lessThanEqual(q.center - r, upper)) &&
+                     glm::all(glm::greaterThanEqual(q.center + r, lower));
+  return meets ? Seen::container : Seen::other;
+}
+
+/// The fast builder, or nullopt where it leaves the answer to the reference: two transparent
+/// spheres that partially overlap (so that the SceneError names the same pair), and arithmetic
+/// at its limits (coordinates far beyond the radii, equal radii nested by rounding), where its
+/// reasoning, which takes containment as transitive, could differ from the reference by a
+/// rounding.
+///
+/// Transparent spheres are taken from the largest down, each finding its parent among the ones
+/// already filed (all at least as large) and then filed itself in a NestingGrid. The parent of s
+/// is its smallest container, and in a valid scene containers are nested, so the first level of
+/// the grid (from s's own up) that holds one holds the parent: in the cell of s's centre, each
+/// chain's containers are a prefix, whose end the jump pointers find. The same pass checks the
+/// nesting rule: a sphere filed before s (so no smaller) that meets s without containing it
+/// either is in that cell at a level up to the parent's, or meets the parent without containing
+/// it, which was checked when it was filed; and in a chain it is either the first sphere past the
+/// containers or inside that one, which then meets s too. So looking at that single sphere per
+/// chain suffices. Opaque spheres look up their parent the same way once every transparent
+/// sphere is filed.
+///
+/// Cost, for a valid scene: one cell per level between a sphere's own and its parent's, a number
+/// of chains per cell bounded by packing, and O(log n) per chain holding containers: O(n (log n +
+/// log(r_max / r_min))) after the sort, whatever the nesting depth.
+inline std::optional<InclusionTree> build_inclusion_tree_fast(const SceneDescription& scene) {
+  const auto& spheres = scene.spheres;
+  const std::size_t n = spheres.size();
+  InclusionTree tree;
+  tree.parent.assign(n, kNoParent);
+  tree.outside_ior.assign(n, scene.medium_ior);
+
+  std::vector<std::uint32_t> glass;
+  for (std::size_t i = 0; i < n; ++i) {
+    const SphereDescription& s = spheres[i];
+    if (!(s.radius > 0.0f) || !std::isfinite(s.radius) || !std::isfinite(s.center.x) ||
+        !std::isfinite(s.center.y) || !std::isfinite(s.center.z))
+      return std::nullopt;  // never in a validated scene; the levels need positive radii
+    if (s.material.is_transparent()) glass.push_back(static_cast<std::uint32_t>(i));
+  }
+  if (glass.empty()) return tree;
+
+  // The reference's choice among containers: the smallest, then the first listed.
+  const auto before = [&](std::uint32_t a, std::uint32_t b) {
+    return b == kNoParent || spheres[a].radius < spheres[b].radius ||
+           (spheres[a].radius == spheres[b].radius && a < b);
+  };
+  {
+    // Sorted as (radius, index) pairs: the comparisons then read one array, not the scene.
+    std::vector<std::pair<float, std::uint32_t>> order;
+    order.reserve(glass.size());
+    for (const std::uint32_t g : glass)
+      order.emplace_back(spheres[g].radius, g);
+    std::sort(order.begin(), order.end(), std::greater<>());  // the largest (and last) first
+    for (std::size_t k = 0; k < glass.size(); ++k)
+      glass[k] = order[k].second;
+  }
+  std::vector<int> levels;
+  for (const std::uint32_t g : glass)
+    levels.push_back(NestingGrid::level_of(spheres[g].radius));
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+
+  constexpr std::uint32_t kGiveUp = kNoParent - 1;  // sphere indices stay below it (checked)
+  if (n >= kGiveUp) return std::nullopt;
+  std::vector<NestingGrid::Sphere> geometry;  // of glass[k], in the same order
+  geometry.reserve(glass.size());
+  for (const std::uint32_t g : glass)
+    geometry.push_back({spheres[g].center, spheres[g].radius});
+  NestingGrid grid;
+  if (!grid.prepare(geometry)) return std::nullopt;
+
+  // The parent of sphere s among the filed spheres, kNoParent if none, kGiveUp to give up.
+  const auto find_parent = [&](std::uint32_t s) -> std::uint32_t {
+    const SphereDescription& inner = spheres[s];
+    const bool transparent = inner.material.is_transparent();
+    const auto contains = [&](std::uint32_t q) {
+      return seen_from(inner, spheres[q]) == Seen::container;
+    };
+    const int own_level = NestingGrid::level_of(inner.radius);
+    for (auto level = std::lower_bound(levels.begin(), levels.end(), own_level);
+         level != levels.end(); ++level) {
+      const std::uint32_t cell = grid.cell_at(inner.center, *level);
+      if (cell == NestingGrid::kNone) continue;
+      std::uint32_t parent = kNoParent;
+      for (const NestingGrid::Entry* e = grid.begin(cell); e != grid.end(cell); ++e) {
+        if (far_apart(inner.center, inner.radius, e->head_center, e->head_radius)) continue;
+        const NestingGrid::Chain& chain = grid.chain(e->chain);
+        const std::uint32_t head = grid.node(chain.head).sphere;
+        const Seen head_seen = seen_from(inner, spheres[head]);
+        if (head_seen != Seen::container) {
+          // Nothing in the chain contains s. An opaque s may cut through any of it; a
+          // transparent one must be clear of the head, and so of all it holds.
+          if (transparent && head_seen != Seen::clear) return kGiveUp;
+          continue;
+        }
+        const auto [deepest, past] = grid.deepest(chain, contains);
+        if (transparent && past != NestingGrid::kNone &&
+            seen_from(inner, spheres[grid.node(past).sphere]) != Seen::clear)
+          return kGiveUp;
+        const std::uint32_t candidate = grid.node(deepest).sphere;
+        if (transparent && spheres[candidate].radius == inner.radius) return kGiveUp;
+        if (before(candidate, parent)) parent = candidate;
+      }
+      // Containers are nested, so any on a higher level is larger; and a sphere there that
+      // meets s meets this parent too, so it contains it: the filed spheres are pairwise
+      // disjoint or nested, each pair checked when the smaller one was filed.
+      if (parent != kNoParent) return parent;
+    }
+    return kNoParent;
+  };
+
+  for (std::size_t k = 0; k < glass.size(); ++k) {
+    const std::uint32_t s = glass[k];
+    const std::uint32_t parent = find_parent(s);
+    if (parent == kGiveUp) return std::nullopt;
+    tree.parent[s] = parent;
+    // File s in every cell of its level near it, after the innermost chain tail containing it
+    // (which keeps the chains of a cell as few as its innermost spheres).
+    const SphereDescription& inner = spheres[s];
+    grid.for_each_cell_of(geometry[k], [&](std::uint32_t cell) {
+      std::uint32_t after = NestingGrid::kNone, tail = kNoParent;
+      for (const NestingGrid::Entry* e = grid.begin(cell); e != grid.end(cell); ++e) {
+        if (far_apart(inner.center, inner.radius, e->head_center, e->head_radius)) continue;
+        const std::uint32_t t = grid.node(grid.chain(e->chain).tail).sphere;
+        if (before(t, tail) && seen_from(inner, spheres[t]) == Seen::container) {
+          after = e->chain;
+          tail = t;
+        }
+      }
+      grid.append(cell, after, s, geometry[k]);
+    });
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (spheres[i].material.is_transparent()) continue;
+    const std::uint32_t parent = find_parent(static_cast<std::uint32_t>(i));
+    if (parent == kGiveUp) return std::nullopt;
+    tree.parent[i] = parent;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (tree.parent[i] != kNoParent) tree.outside_ior[i] = spheres[tree.parent[i]].material.ior;
+  return tree;
+}
+
+}  // namespace detail
+
+/// The pairs per sphere the reference's loop may meet in build_inclusion_tree before it turns to
+/// the fast builder: random scenes need one or two.
+inline constexpr std::size_t kPairsPerSphere = 16;
+
+/// Builds the tree; throws SceneError naming both lines if two transparent spheres partially
+/// overlap. The result, and the error, are those of build_inclusion_tree_reference, in
+/// O(n log n) for concentric shells as for disjoint spheres (see
+/// detail::build_inclusion_tree_fast); an invalid scene may cost what the reference costs.
+inline InclusionTree build_inclusion_tree(const SceneDescription& scene) {
+  // Where nesting is shallow (most scenes) the pairs are few and the reference's own loop is
+  // the quickest; it gives up after a few pairs per sphere, which bounds the time it can waste.
+  const std::size_t budget = kPairsPerSphere * scene.spheres.size() + 4096;
+  if (std::optional<InclusionTree> tree = detail::build_inclusion_tree_pairwise(scene, budget))
+    return std::move(*tree);
+  if (std::optional<InclusionTree> tree = detail::build_inclusion_tree_fast(scene))
+    return std::move(*tree);
+  return build_inclusion_tree_reference(scene);
 }
 
 }  // namespace glint
