@@ -3,6 +3,7 @@
 // including degenerate ones (all centres equal, all in a plane, one huge sphere among tiny ones).
 
 #include <catch2/catch.hpp>
+#include <cstring>
 #include <vector>
 
 #include "glint/geometry/sphere_bvh.hpp"
@@ -123,4 +124,35 @@ TEST_CASE("an empty bvh reports no hits", "[bvh]") {
   glint::SphereHit hit;
   CHECK_FALSE(bvh.closest_hit(ray, hit));
   CHECK_FALSE(bvh.any_hit(ray));
+}
+
+TEST_CASE("a tree built on several cores is the tree built on one", "[bvh]") {
+  // Past the parallel threshold, with clusters and concentric runs so that the top levels mix
+  // SAH and median splits, and leaves are made above the subtrees' ranges.
+  glint::Pcg32 rng(99, 1);
+  std::vector<SphereBvh::Input> spheres;
+  for (std::uint32_t i = 0; i < 150000; ++i) {
+    const float spread = i % 3 == 0 ? 1000.0f : 50.0f;
+    const Vec3 center = i % 101 == 0 ? Vec3(7.0f) : random_point(rng, spread);
+    spheres.push_back({center, 0.1f + rng.next_float(), i});
+  }
+  const auto build = [&](std::size_t cores) {
+    std::vector<SphereBvh::Input> copy = spheres;
+    return glint::bvh::build_binary_tree(copy, cores);
+  };
+  const glint::bvh::BinaryTree one = build(1);
+  for (const std::size_t cores : {2, 3, 8}) {
+    INFO(cores << " cores");
+    const glint::bvh::BinaryTree many = build(cores);
+    REQUIRE(many.nodes.size() == one.nodes.size());
+    REQUIRE(many.spheres.size() == one.spheres.size());
+    CHECK(std::memcmp(many.nodes.data(), one.nodes.data(),
+                      one.nodes.size() * sizeof(glint::bvh::Node)) == 0);
+    bool same_spheres = true;
+    for (std::size_t i = 0; i < one.spheres.size(); ++i)
+      same_spheres = same_spheres && one.spheres[i].id == many.spheres[i].id &&
+                     one.spheres[i].center == many.spheres[i].center &&
+                     one.spheres[i].radius == many.spheres[i].radius;
+    CHECK(same_spheres);
+  }
 }

@@ -12,6 +12,7 @@
 // chains (detail/nesting_grid.hpp), O(n log n) whatever the nesting depth.
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -22,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "glint/detail/parallel_chunks.hpp"
 #include "glint/geometry/sphere_bvh.hpp"
 #include "glint/scene/detail/nesting_grid.hpp"
 #include "glint/scene/scene_description.hpp"
@@ -59,7 +61,10 @@ struct InclusionTree {
 namespace detail {
 
 /// The reference builder's work, given up (nullopt) once it has met more than `budget` pairs,
-/// which is checked before each sphere: so it costs at most the budget plus one sphere's pairs.
+/// which is checked before each sphere: so it costs at most the budget plus a sphere's pairs per
+/// core. The spheres are independent (each looks for its own containers and overlaps), so they
+/// are shared among the cores; the first overlap in sphere order is the one reported, as a loop
+/// in order would find it.
 inline std::optional<InclusionTree> build_inclusion_tree_pairwise(const SceneDescription& scene,
                                                                   std::size_t budget) {
   const auto& spheres = scene.spheres;
@@ -75,48 +80,64 @@ inline std::optional<InclusionTree> build_inclusion_tree_pairwise(const SceneDes
   if (glass.empty()) return tree;
   const SphereBvh hierarchy(std::move(glass));
 
-  std::vector<std::uint32_t> pending;
-  std::size_t met = 0;
-  for (std::size_t index = 0; index < n; ++index) {
-    if (met > budget) return std::nullopt;
-    const auto i = static_cast<std::uint32_t>(index);
-    const SphereDescription& inner = spheres[i];
-    // A transparent sphere must meet every glass sphere its box overlaps, to find partial
-    // overlaps. An opaque one only needs its containers (it may cut through glass), and the box
-    // of a container holds its centre: a point query, which keeps each wall of radius 1e5 from
-    // visiting every glass sphere of the scene.
-    const Vec3 reach(inner.material.is_transparent() ? inner.radius : 0.0f);
-    std::uint32_t& parent = tree.parent[i];
-    const auto visit = [&](std::uint32_t j) {
-      ++met;
-      if (j == i) return;
-      const SphereDescription& outer = spheres[j];
-      switch (classify_spheres(inner, outer)) {
-        case SphereRelation::first_inside_second:
-          // Containers of one sphere are nested among themselves, so the smallest is the
-          // innermost; ties (equal radii can only be coincident spheres, rejected below) aside.
-          if (parent == kNoParent || outer.radius < spheres[parent].radius ||
-              (outer.radius == spheres[parent].radius && j < parent))
-            parent = j;
-          return;
-        case SphereRelation::overlapping:
-          if (!inner.material.is_transparent()) return;  // opaque spheres may cut through glass
-          {
-            const SphereDescription& first = inner.line <= outer.line ? inner : outer;
-            const SphereDescription& second = inner.line <= outer.line ? outer : inner;
-            throw SceneError(scene.source, second.line,
-                             "transparent spheres at lines " + std::to_string(first.line) +
-                                 " and " + std::to_string(second.line) +
-                                 " partially overlap; transparent spheres must be disjoint or "
-                                 "nested");
-          }
-        default:
-          return;
+  // For each sphere, the first transparent sphere it partially overlaps, if any.
+  std::vector<std::uint32_t> overlap(n, kNoParent);
+  std::atomic<std::size_t> met{0};
+  std::atomic<bool> gave_up{false};
+  parallel_chunks(n, 1024, 0, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::uint32_t> pending;
+    for (std::size_t index = begin; index < end; ++index) {
+      if (met.load(std::memory_order_relaxed) > budget) {
+        gave_up.store(true, std::memory_order_relaxed);
+        return;
       }
-    };
-    hierarchy.for_each_near_box(inner.center - reach, inner.center + reach, visit, pending);
-  }
+      const auto i = static_cast<std::uint32_t>(index);
+      const SphereDescription& inner = spheres[i];
+      // A transparent sphere must meet every glass sphere its box overlaps, to find partial
+      // overlaps. An opaque one only needs its containers (it may cut through glass), and the
+      // box of a container holds its centre: a point query, which keeps each wall of radius 1e5
+      // from visiting every glass sphere of the scene.
+      const Vec3 reach(inner.material.is_transparent() ? inner.radius : 0.0f);
+      std::uint32_t& parent = tree.parent[i];
+      std::size_t pairs = 0;
+      const auto visit = [&](std::uint32_t j) {
+        ++pairs;
+        if (j == i) return;
+        const SphereDescription& outer = spheres[j];
+        switch (classify_spheres(inner, outer)) {
+          case SphereRelation::first_inside_second:
+            // Containers of one sphere are nested among themselves, so the smallest is the
+            // innermost; ties (equal radii can only be coincident spheres, rejected below)
+            // aside.
+            if (parent == kNoParent || outer.radius < spheres[parent].radius ||
+                (outer.radius == spheres[parent].radius && j < parent))
+              parent = j;
+            return;
+          case SphereRelation::overlapping:
+            // Opaque spheres may cut through glass.
+            if (inner.material.is_transparent() && overlap[i] == kNoParent) overlap[i] = j;
+            return;
+          default:
+            return;
+        }
+      };
+      hierarchy.for_each_near_box(inner.center - reach, inner.center + reach, visit, pending);
+      met.fetch_add(pairs, std::memory_order_relaxed);
+    }
+  });
+  if (gave_up.load()) return std::nullopt;
 
+  for (std::size_t i = 0; i < n; ++i)
+    if (overlap[i] != kNoParent) {
+      const SphereDescription& inner = spheres[i];
+      const SphereDescription& outer = spheres[overlap[i]];
+      const SphereDescription& first = inner.line <= outer.line ? inner : outer;
+      const SphereDescription& second = inner.line <= outer.line ? outer : inner;
+      throw SceneError(scene.source, second.line,
+                       "transparent spheres at lines " + std::to_string(first.line) + " and " +
+                           std::to_string(second.line) +
+                           " partially overlap; transparent spheres must be disjoint or nested");
+    }
   for (std::size_t i = 0; i < n; ++i)
     if (tree.parent[i] != kNoParent) tree.outside_ior[i] = spheres[tree.parent[i]].material.ior;
   return tree;

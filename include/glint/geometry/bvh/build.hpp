@@ -2,14 +2,21 @@
 // Building the binary tree of a sphere BVH: top down, splitting each node where a binned
 // surface area heuristic says, into 32-byte nodes with the left child right after its parent
 // and the spheres of each leaf stored contiguously.
+//
+// Large trees are built on every core, into the same nodes as one core would make: the top
+// levels are split on the calling thread until the ranges are small, those subtrees are built
+// in parallel (disjoint ranges of the spheres, each into its own nodes), and the nodes are then
+// laid out in the serial order, the subtrees spliced in with their offsets moved.
 
 #include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <thread>
 #include <vector>
 
+#include "glint/detail/parallel_chunks.hpp"
 #include "glint/math/vector.hpp"
 
 namespace glint::bvh {
@@ -107,18 +114,57 @@ class Builder {
  public:
   explicit Builder(std::vector<SphereInput>& spheres) : spheres_(spheres) {}
 
-  BinaryTree build() {
-    tree_.nodes.reserve(2 * spheres_.size());
+  /// Trees of fewer spheres are built on one core: below this, threads cost more than they save.
+  static constexpr std::size_t kParallelBuildSize = std::size_t{1} << 16;
+
+  /// `cores`: how many to use at most (0: all there are); the tree is the same for any.
+  BinaryTree build(std::size_t cores = 0) {
     tree_.spheres.reserve(spheres_.size());
-    build_node(0, spheres_.size(), 0);
+    if (cores == 0) cores = std::max(1u, std::thread::hardware_concurrency());
+    if (cores == 1 || spheres_.size() < kParallelBuildSize) {
+      tree_.nodes.reserve(2 * spheres_.size());
+      build_node(0, spheres_.size(), 0);
+      return std::move(tree_);
+    }
+    // Subtrees of at most this many spheres are built in parallel: several per core, so that
+    // uneven ones even out.
+    const std::size_t subtree_size = std::max<std::size_t>(spheres_.size() / (8 * cores), 4096);
+    std::vector<Piece> pieces;
+    plan(0, spheres_.size(), 0, subtree_size, pieces);
+    std::vector<Piece*> subtrees;
+    for (Piece& piece : pieces)
+      if (piece.kind == Piece::Kind::subtree) subtrees.push_back(&piece);
+    glint::detail::parallel_chunks(subtrees.size(), 1, cores,
+                                   [&](std::size_t first, std::size_t last) {
+                                     for (std::size_t t = first; t < last; ++t) {
+                                       Piece& piece = *subtrees[t];
+                                       Builder builder(spheres_);
+                                       builder.build_node(piece.begin, piece.end, piece.depth);
+                                       piece.tree = std::move(builder.tree_);
+                                     }
+                                   });
+    std::size_t nodes = 0;
+    for (const Piece& piece : pieces)
+      nodes += piece.kind == Piece::Kind::subtree ? piece.tree.nodes.size() : 1;
+    tree_.nodes.reserve(nodes);
+    std::size_t next = 0;
+    lay_out(pieces, next);
     return std::move(tree_);
   }
 
  private:
-  std::uint32_t build_node(std::size_t begin, std::size_t end, int depth) {
+  /// What a node of a range becomes: a leaf, or an inner node split at `middle`.
+  struct Decision {
+    bool leaf;
+    std::size_t middle;
+    Box box;
+  };
+
+  /// The one place where a node is decided; reorders the range's spheres for a split.
+  Decision decide(std::size_t begin, std::size_t end, int depth) {
     const RangeBounds bounds = bounds_of_range(begin, end);
     const std::size_t count = end - begin;
-    if (count <= kMaxLeafSize || depth >= kMaxDepth) return make_leaf(begin, end, bounds.box);
+    if (count <= kMaxLeafSize || depth >= kMaxDepth) return {true, end, bounds.box};
     const Vec3 extent = bounds.centroids.upper - bounds.centroids.lower;
     const int axis =
         extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
@@ -126,12 +172,72 @@ class Builder {
     if (extent[axis] > 0.0f) {
       const Binning binning(bounds.centroids, axis);
       const Split split = best_split(binning, begin, end);
-      if (leaf_is_cheaper(split, bounds.box, count)) return make_leaf(begin, end, bounds.box);
+      if (leaf_is_cheaper(split, bounds.box, count)) return {true, end, bounds.box};
       middle = partition(binning, split, begin, end);
     }
     // All centroids in one bin (e.g. concentric spheres): split by count instead.
     if (middle == begin || middle == end) middle = median_split(axis, begin, end);
-    return make_inner(begin, middle, end, bounds.box, depth);
+    return {false, middle, bounds.box};
+  }
+
+  std::uint32_t build_node(std::size_t begin, std::size_t end, int depth) {
+    const Decision decision = decide(begin, end, depth);
+    if (decision.leaf) return make_leaf(begin, end, decision.box);
+    return make_inner(begin, decision.middle, end, decision.box, depth);
+  }
+
+  /// The top of a parallel build, in the serial build's order: its leaves and inner nodes, and
+  /// the ranges left to be built as subtrees.
+  struct Piece {
+    enum class Kind { leaf, inner, subtree } kind;
+    std::size_t begin, end;
+    int depth;
+    Box box;          ///< leaf and inner
+    BinaryTree tree;  ///< subtree, once built
+  };
+
+  void plan(std::size_t begin, std::size_t end, int depth, std::size_t subtree_size,
+            std::vector<Piece>& pieces) {
+    if (end - begin <= subtree_size) {
+      pieces.push_back({Piece::Kind::subtree, begin, end, depth, {}, {}});
+      return;
+    }
+    const Decision decision = decide(begin, end, depth);
+    if (decision.leaf) {
+      pieces.push_back({Piece::Kind::leaf, begin, end, depth, decision.box, {}});
+      return;
+    }
+    pieces.push_back({Piece::Kind::inner, begin, end, depth, decision.box, {}});
+    plan(begin, decision.middle, depth + 1, subtree_size, pieces);
+    plan(decision.middle, end, depth + 1, subtree_size, pieces);
+  }
+
+  /// Appends the nodes of the piece at `next` and of its descendants, as build_node would have;
+  /// returns the index of its node.
+  std::uint32_t lay_out(std::vector<Piece>& pieces, std::size_t& next) {
+    Piece& piece = pieces[next++];
+    switch (piece.kind) {
+      case Piece::Kind::leaf:
+        return make_leaf(piece.begin, piece.end, piece.box);
+      case Piece::Kind::inner: {
+        const auto index = static_cast<std::uint32_t>(tree_.nodes.size());
+        tree_.nodes.push_back(Node{piece.box.lower, 0, piece.box.upper, 0});
+        lay_out(pieces, next);
+        tree_.nodes[index].offset = lay_out(pieces, next);
+        return index;
+      }
+      case Piece::Kind::subtree:
+        break;
+    }
+    const auto node_base = static_cast<std::uint32_t>(tree_.nodes.size());
+    const auto sphere_base = static_cast<std::uint32_t>(tree_.spheres.size());
+    for (Node node : piece.tree.nodes) {
+      node.offset += node.count > 0 ? sphere_base : node_base;
+      tree_.nodes.push_back(node);
+    }
+    tree_.spheres.insert(tree_.spheres.end(), piece.tree.spheres.begin(), piece.tree.spheres.end());
+    piece.tree = {};
+    return node_base;
   }
 
   RangeBounds bounds_of_range(std::size_t begin, std::size_t end) const {
@@ -223,10 +329,11 @@ class Builder {
 
 }  // namespace detail
 
-/// The binary tree over `spheres` (which it reorders); empty for no spheres.
-inline BinaryTree build_binary_tree(std::vector<SphereInput>& spheres) {
+/// The binary tree over `spheres` (which it reorders); empty for no spheres. Built on up to
+/// `cores` cores (0: all there are), into the same tree whatever their number.
+inline BinaryTree build_binary_tree(std::vector<SphereInput>& spheres, std::size_t cores = 0) {
   if (spheres.empty()) return {};
-  return detail::Builder(spheres).build();
+  return detail::Builder(spheres).build(cores);
 }
 
 }  // namespace glint::bvh
