@@ -119,11 +119,11 @@ class Builder {
 
   /// `cores`: how many to use at most (0: all there are); the tree is the same for any.
   BinaryTree build(std::size_t cores = 0) {
-    tree_.spheres.reserve(spheres_.size());
     if (cores == 0) cores = std::max(1u, std::thread::hardware_concurrency());
     if (cores == 1 || spheres_.size() < kParallelBuildSize) {
       tree_.nodes.reserve(2 * spheres_.size());
       build_node(0, spheres_.size(), 0);
+      copy_leaf_spheres();
       return std::move(tree_);
     }
     // Subtrees of at most this many spheres are built in parallel: several per core, so that
@@ -149,6 +149,7 @@ class Builder {
     tree_.nodes.reserve(nodes);
     std::size_t next = 0;
     lay_out(pieces, next);
+    copy_leaf_spheres();
     return std::move(tree_);
   }
 
@@ -230,12 +231,10 @@ class Builder {
         break;
     }
     const auto node_base = static_cast<std::uint32_t>(tree_.nodes.size());
-    const auto sphere_base = static_cast<std::uint32_t>(tree_.spheres.size());
     for (Node node : piece.tree.nodes) {
-      node.offset += node.count > 0 ? sphere_base : node_base;
+      if (node.count == 0) node.offset += node_base;  // leaves' offsets are already global
       tree_.nodes.push_back(node);
     }
-    tree_.spheres.insert(tree_.spheres.end(), piece.tree.spheres.begin(), piece.tree.spheres.end());
     piece.tree = {};
     return node_base;
   }
@@ -305,12 +304,18 @@ class Builder {
     return middle;
   }
 
+  void copy_leaf_spheres() {
+    tree_.spheres.reserve(spheres_.size());
+    for (const SphereInput& s : spheres_)
+      tree_.spheres.push_back(LeafSphere{s.center, s.radius, s.id});
+  }
+
   std::uint32_t make_leaf(std::size_t begin, std::size_t end, const Box& box) {
     const auto index = static_cast<std::uint32_t>(tree_.nodes.size());
-    tree_.nodes.push_back(Node{box.lower, static_cast<std::uint32_t>(tree_.spheres.size()),
-                               box.upper, static_cast<std::uint32_t>(end - begin)});
-    for (std::size_t i = begin; i < end; ++i)
-      tree_.spheres.push_back(LeafSphere{spheres_[i].center, spheres_[i].radius, spheres_[i].id});
+    // Leaves come in the order of their ranges, so a leaf's spheres are where its range is:
+    // copied once, at the end (copy_leaf_spheres).
+    tree_.nodes.push_back(Node{box.lower, static_cast<std::uint32_t>(begin), box.upper,
+                               static_cast<std::uint32_t>(end - begin)});
     return index;
   }
 
