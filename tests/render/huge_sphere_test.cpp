@@ -250,3 +250,46 @@ TEMPLATE_TEST_CASE("huge floors: a lit floor renders with the point-light formul
     }
   }
 }
+
+TEST_CASE("huge floors: geometry at the scene format's limits renders without overflow",
+          "[render][huge_sphere]") {
+  // The largest floor at the largest coordinates the validator accepts (limits in
+  // scene/validate.hpp), the camera 1e6 above it looking straight down, a light 1e6 above the
+  // camera: every squared distance the kernels form stays finite, and the floor shows the
+  // point-light formula rho I / (pi d^2).
+  const float radius = glint::limits::max_sphere_radius;
+  const float edge = glint::limits::max_coordinate;
+  glint::SceneDescription scene;
+  scene.background = Color(0.0f);
+  glint::SphereDescription floor;
+  floor.center = {edge, -edge, -edge};
+  floor.radius = radius;
+  floor.material.diffuse = 0.5f;
+  scene.spheres.push_back(floor);
+  const double top = double(floor.center.y) + double(radius);
+  scene.camera.position = {edge, float(top + 1e6), -edge};
+  scene.camera.look_at = scene.camera.position - Vec3(0.0f, 1e6f, 0.0f);
+  scene.camera.up = {0.0f, 0.0f, -1.0f};
+  scene.camera.fov_degrees = 1e-3f;
+  glint::PointLight light;
+  light.position = scene.camera.position + Vec3(0.0f, 1e6f, 0.0f);
+  light.intensity = 1e12f;
+  scene.lights.push_back(light);
+  REQUIRE_NOTHROW(glint::validate(scene));
+
+  glint::RenderSettings s;
+  s.width = 4;
+  s.height = 4;
+  s.samples_per_pixel = 2;
+  s.max_depth = 2;
+  s.threads = 1;
+  const glint::RenderResult result =
+      glint::Renderer<glint::variants::report>::render(glint::Scene::build(scene), s);
+  CHECK(result.stats.invalid_samples == 0);
+  // Near 9e10 floats are 8192 apart: the floor's top as the kernel stores it (its anchor, the
+  // top rounded to float) is where the light's distance is measured from.
+  const double d = double(light.position.y) - double(float(top));
+  const double expected = 0.5 * double(light.intensity) / (M_PI * d * d);
+  for (const Color& c : result.film.pixels())
+    CHECK(c.x == Approx(expected).epsilon(1e-3));
+}
