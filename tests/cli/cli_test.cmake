@@ -50,6 +50,11 @@ glint_cli_test(missing-scene STATUS 1 STDERR "no-such.scene.*cannot open"
 glint_cli_test(overlapping-glass STATUS 1
                STDERR "overlapping-glass.scene:[0-9]+: error: transparent spheres at lines [0-9]+ and [0-9]+"
                ARGS ${glint_cli_scenes}/overlapping-glass.scene -o out.png OUTPUT out.png)
+# Geometry beyond the limits of float arithmetic is refused with the limit named, not rendered
+# black (a floor of radius 2e10).
+glint_cli_test(huge-radius STATUS 1
+               STDERR "huge-radius.scene:5: error: sphere radius must be at most 1e.10 .the scene format's limit., got 2e.10"
+               ARGS ${PROJECT_SOURCE_DIR}/scenes/invalid/huge-radius.scene -o out.png OUTPUT out.png)
 glint_cli_test(missing-output-directory STATUS 1 STDERR "directory .* does not exist"
                ARGS ${glint_cli_scenes}/tiny.scene -o nowhere/out.png)
 glint_cli_test(output-not-png STATUS 2 STDERR "-o writes an 8-bit sRGB PNG: the file name must end in .png, got 'out.jpg'"

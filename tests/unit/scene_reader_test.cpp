@@ -377,6 +377,21 @@ TEST_CASE("scene reader: semantic errors", "[scene_reader][errors]") {
     expect_error("sphere center=0,0,0 radius=0\n", 1, "sphere radius must be positive, got '0'");
     expect_error("\nsphere center=0,0,0 radius=-2\n", 2, "sphere radius must be positive");
   }
+  SECTION("radius and coordinates within the geometry limits, which are accepted") {
+    expect_error("sphere center=0,0,0 radius=2e10\n", 1,
+                 "sphere radius must be at most 1e+10 (the scene format's limit), got 2e+10");
+    expect_error("\nsphere center=0,-3e11,0 radius=1\n", 2,
+                 "sphere center coordinates must be within +-1e+11 (the scene format's limit), "
+                 "got 3e+11");
+    expect_error("camera position=0,0,-1.5e11 look_at=0,0,0\n", 1,
+                 "camera position coordinates must be within +-1e+11");
+    expect_error("light position=2e11,0,0 intensity=1\n", 1,
+                 "light position coordinates must be within +-1e+11");
+    const glint::SceneDescription at_limits = read_scene_text(
+        "camera position=-1e11,0,1e11 look_at=0,0,0\nlight position=1e11,-1e11,1e11 "
+        "intensity=1\nsphere center=1e11,1e11,-1e11 radius=1e10\n");
+    CHECK(at_limits.spheres.at(0).radius == glint::limits::max_sphere_radius);
+  }
   SECTION("coefficients in [0, 1]") {
     expect_error("sphere center=0,0,0 radius=1 diffuse=1.5\n", 1,
                  "'diffuse' must be in [0, 1], got '1.5'");

@@ -103,8 +103,9 @@ glint::SceneDescription every_field_scene() {
   sphere.material.emission = Color(12.0f);
   scene.spheres.push_back(sphere);
 
-  sphere = {};  // a diffuse remainder small enough to look like rounding
-  sphere.center = Vec3(1e-30f, -1e30f, 3.4e38f);
+  sphere = {};  // a diffuse remainder small enough to look like rounding, at the limits of
+                // the scene format's coordinates
+  sphere.center = Vec3(1e-30f, -glint::limits::max_coordinate, 3.4e-38f);
   sphere.radius = std::numeric_limits<float>::denorm_min();
   sphere.material.diffuse = 0x1p-21f;
   sphere.material.mirror = 1.0f - 0x1p-21f;

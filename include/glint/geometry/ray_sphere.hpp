@@ -5,8 +5,16 @@
 // to the ray subtracted from r^2), which does not cancel catastrophically the way b^2 - c does
 // when the sphere is far away or huge; the roots come from the numerically stable quadratic
 // form q = -(b + sign(b) sqrt(disc)), t = {q, c/q}.
+//
+// That still leaves c = |f|^2 - r^2, which cancels for an origin near the surface of a huge
+// sphere: its error, about u r^2 (u = 2^-24), moves the near root by u r / 2 whatever the ray,
+// so a camera 0.001 above a floor of radius 1e5 sees through it. An AnchoredSphere removes the
+// cancellation by measuring from a point of the surface instead of from the centre (see there).
 
 #include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
 
 #include "glint/math/vector.hpp"
 
@@ -40,6 +48,68 @@ inline bool intersect_sphere_squared_radius(const Vec3& origin, const Vec3& dire
 inline bool intersect_sphere(const Vec3& origin, const Vec3& direction, const Vec3& center,
                              float radius, SphereRoots& roots) {
   return intersect_sphere_squared_radius(origin, direction, center, radius * radius, roots);
+}
+
+/// A sphere given by the point of its surface nearest a reference point (the anchor) and the
+/// offset of the anchor from the centre, m = r n (n the outward unit normal there). With g the
+/// offset of a ray's origin from the anchor and f = g + m its offset from the centre,
+///   c = |f|^2 - r^2 = g.(g + 2m) = g.(f + m)   and   b = f.d,
+/// and c no longer cancels: its error scales with u r |g| instead of u r^2 (u = 2^-24), which
+/// moves the near root by about u |g| instead of u r. That is exact enough for a camera a
+/// millimetre above a planet-sized floor, as long as the rays start near the anchor (which is
+/// why it is the surface point nearest the camera), and never worse than the centre's form.
+/// The offset is rounded to float; the sphere is the one of radius |m| through the anchor,
+/// which differs from the described sphere by about the rounding of its centre.
+struct AnchoredSphere {
+  Vec3 anchor;
+  Vec3 offset;           ///< anchor - centre
+  float radius_squared;  ///< |offset|^2
+};
+
+/// The sphere (center, radius) anchored at its surface point nearest `reference`. Computed in
+/// double, then rounded, so that the anchor and the offset are as exact as float allows.
+inline AnchoredSphere anchor_sphere(const Vec3& center, float radius, const Vec3& reference) {
+  const glm::dvec3 to_reference = glm::dvec3(reference) - glm::dvec3(center);
+  const double distance = glm::length(to_reference);
+  // From the centre itself every surface point is nearest: any will do.
+  const glm::dvec3 normal = distance > 0.0 ? to_reference / distance : glm::dvec3(0.0, 1.0, 0.0);
+  const glm::dvec3 offset = double(radius) * normal;
+  AnchoredSphere sphere;
+  sphere.anchor = Vec3(glm::dvec3(center) + offset);
+  sphere.offset = Vec3(offset);
+  const glm::dvec3 rounded_offset(sphere.offset);
+  sphere.radius_squared = static_cast<float>(glm::dot(rounded_offset, rounded_offset));
+  return sphere;
+}
+
+/// The discriminant b^2 - c for an anchored sphere, in whichever of two forms is accurate for
+/// this origin. Near the sphere (|c| <= r^2, i.e. |f| <= sqrt(2) r) b^2 - c itself: both terms
+/// are accurate, its error is about u (b^2 + |c|) <= 3 u r^2, and far smaller for the grazing
+/// rays (b and c small) whose discriminant is small; Haines's r^2 - |f - b d|^2 carries an
+/// error of u r^2 whatever the ray. Farther away Haines's form, for the reason it exists (a
+/// sphere small next to its distance).
+inline float anchored_discriminant(const Vec3& f, const Vec3& direction,
+                                   const AnchoredSphere& sphere, float b, float c) {
+  if (std::abs(c) <= sphere.radius_squared) return std::fma(b, b, -c);
+  const Vec3 perpendicular = f - b * direction;
+  return sphere.radius_squared - glm::dot(perpendicular, perpendicular);
+}
+
+/// intersect_sphere for an anchored sphere. `direction` must be unit length.
+inline bool intersect_anchored_sphere(const Vec3& origin, const Vec3& direction,
+                                      const AnchoredSphere& sphere, SphereRoots& roots) {
+  const Vec3 g = origin - sphere.anchor;
+  const Vec3 f = g + sphere.offset;
+  const float c = glm::dot(g, f + sphere.offset);
+  const float b = glm::dot(f, direction);
+  const float discriminant = anchored_discriminant(f, direction, sphere, b, c);
+  if (!(discriminant >= 0.0f)) return false;
+  const float q = -(b + std::copysign(std::sqrt(discriminant), b));
+  const float t0 = c / q;
+  const float t1 = q;
+  roots.near = min_of(t0, t1);
+  roots.far = max_of(t0, t1);
+  return true;
 }
 
 /// Where a ray that starts on the sphere's surface and heads inwards leaves it again. Exact for

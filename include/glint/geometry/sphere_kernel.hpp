@@ -1,10 +1,11 @@
 #pragma once
 // The leaf kernel: one ray against a run of spheres, keeping the first hit in hit order
 // (accelerator.hpp). test_sphere is the reference for one sphere and test_spheres runs it over
-// a run; SphereSet's scalar path and the BVH's leaves both use these. avx2::closest_hit and
-// avx2::any_hit are the 8-wide form of the same test for SphereSet's structure-of-arrays storage:
-// the same formulas with the same tie rule, but its own order of fused operations, so it agrees
-// with the scalar form up to rounding, not bit for bit.
+// a run; SphereSet's and WallSet's scalar paths and the BVH's leaves use these. avx2::closest_hit
+// and avx2::any_hit are the 8-wide form of the same test for the sets' structure-of-arrays
+// storage (SphereColumns for spheres given by their centre, AnchoredColumns for anchored ones,
+// see ray_sphere.hpp): the same formulas with the same tie rule, but their own order of fused
+// operations, so they agree with the scalar form up to rounding, not bit for bit.
 
 #include <bit>
 #include <concepts>
@@ -18,13 +19,31 @@
 
 namespace glint {
 
-/// Spheres addressed by index, as test_spheres reads them.
+/// Spheres given by centre and squared radius, addressed by index, as test_spheres reads them.
 template <class S>
 concept IndexedSpheres = requires(const S& s, std::size_t i) {
   { s.center(i) } -> std::convertible_to<Vec3>;
   { s.radius_squared(i) } -> std::convertible_to<float>;
   { s.id(i) } -> std::convertible_to<std::uint32_t>;
 };
+
+/// Anchored spheres (ray_sphere.hpp), addressed by index.
+template <class S>
+concept IndexedAnchoredSpheres = requires(const S& s, std::size_t i) {
+  { s.anchored(i) } -> std::convertible_to<AnchoredSphere>;
+  { s.id(i) } -> std::convertible_to<std::uint32_t>;
+};
+
+/// If the first of a sphere's roots past ray.t_min comes before `best`, makes it the best and
+/// returns true.
+inline bool take_first_root(const Ray& ray, const SphereRoots& roots, std::uint32_t id,
+                            SphereHit& best) {
+  const float t = roots.near > ray.t_min ? roots.near : roots.far;
+  const SphereHit candidate{t, id};
+  if (!(t > ray.t_min) || !comes_before(candidate, best)) return false;
+  best = candidate;
+  return true;
+}
 
 /// If the ray meets sphere `id` past ray.t_min at a point that comes before `best`, makes that
 /// point the best and returns true. The ray's origin sphere is skipped (see Ray).
@@ -34,22 +53,37 @@ inline bool test_sphere(const Ray& ray, const Vec3& center, float radius_squared
   SphereRoots roots;
   if (!intersect_sphere_squared_radius(ray.origin, ray.direction, center, radius_squared, roots))
     return false;
-  const float t = roots.near > ray.t_min ? roots.near : roots.far;
-  const SphereHit candidate{t, id};
-  if (!(t > ray.t_min) || !comes_before(candidate, best)) return false;
-  best = candidate;
-  return true;
+  return take_first_root(ray, roots, id, best);
+}
+
+/// test_sphere for an anchored sphere.
+inline bool test_sphere(const Ray& ray, const AnchoredSphere& sphere, std::uint32_t id,
+                        SphereHit& best) {
+  if (id == ray.origin_sphere) return false;
+  SphereRoots roots;
+  if (!intersect_anchored_sphere(ray.origin, ray.direction, sphere, roots)) return false;
+  return take_first_root(ray, roots, id, best);
+}
+
+template <IndexedSpheres Spheres>
+bool test_sphere_at(const Ray& ray, const Spheres& spheres, std::size_t i, SphereHit& best) {
+  return test_sphere(ray, spheres.center(i), spheres.radius_squared(i), spheres.id(i), best);
+}
+
+template <IndexedAnchoredSpheres Spheres>
+bool test_sphere_at(const Ray& ray, const Spheres& spheres, std::size_t i, SphereHit& best) {
+  return test_sphere(ray, spheres.anchored(i), spheres.id(i), best);
 }
 
 /// test_sphere for spheres [begin, end); whether any of them became the best. With
 /// `stop_at_first`, returns at the first such sphere (enough for an occlusion query).
-template <IndexedSpheres Spheres>
+template <class Spheres>
+requires IndexedSpheres<Spheres> || IndexedAnchoredSpheres<Spheres>
 bool test_spheres(const Ray& ray, const Spheres& spheres, std::size_t begin, std::size_t end,
                   SphereHit& best, bool stop_at_first) {
   bool found = false;
   for (std::size_t i = begin; i < end; ++i) {
-    if (!test_sphere(ray, spheres.center(i), spheres.radius_squared(i), spheres.id(i), best))
-      continue;
+    if (!test_sphere_at(ray, spheres, i, best)) continue;
     found = true;
     if (stop_at_first) break;
   }
@@ -67,6 +101,19 @@ struct SphereColumns {
   const float* cx;
   const float* cy;
   const float* cz;
+  const float* r2;
+  const std::uint32_t* id;
+  std::size_t size;  ///< without the padding
+};
+
+/// Anchored spheres (ray_sphere.hpp) in the same form; padding lanes have NaN anchors.
+struct AnchoredColumns {
+  const float* ax;
+  const float* ay;
+  const float* az;
+  const float* mx;  ///< the offset of the anchor from the centre
+  const float* my;
+  const float* mz;
   const float* r2;
   const std::uint32_t* id;
   std::size_t size;  ///< without the padding
@@ -98,26 +145,12 @@ struct HitLanes {
   HitLanes(__m256 t_lanes, __m256i sphere_lanes) : t(t_lanes), sphere(sphere_lanes) {}
 };
 
-/// For the eight spheres at `base`: in each lane the first root past t_min (the near root, or
-/// the far one from inside), and in `has_roots` whether the ray meets the sphere at all.
-/// Returns false, leaving both unset, when no lane can have a root ahead of the ray.
-inline bool first_roots(const RayLanes& ray, const SphereColumns& spheres, std::size_t base,
-                        __m256& t, __m256& has_roots) {
+/// The first root past t_min in each lane from the quadratic's b = f.d, c = |f|^2 - r^2 and
+/// discriminant; false when no lane can have a root ahead of the ray (see first_roots).
+inline bool first_roots_from(const RayLanes& ray, __m256 b, __m256 c, __m256 discriminant,
+                             __m256& t, __m256& has_roots) {
   const __m256 zero = _mm256_setzero_ps();
-  const __m256 fx = _mm256_sub_ps(ray.ox, _mm256_load_ps(spheres.cx + base));
-  const __m256 fy = _mm256_sub_ps(ray.oy, _mm256_load_ps(spheres.cy + base));
-  const __m256 fz = _mm256_sub_ps(ray.oz, _mm256_load_ps(spheres.cz + base));
-  const __m256 r2 = _mm256_load_ps(spheres.r2 + base);
-  const __m256 b =
-      _mm256_fmadd_ps(fx, ray.dx, _mm256_fmadd_ps(fy, ray.dy, _mm256_mul_ps(fz, ray.dz)));
-  const __m256 px = _mm256_fnmadd_ps(b, ray.dx, fx);
-  const __m256 py = _mm256_fnmadd_ps(b, ray.dy, fy);
-  const __m256 pz = _mm256_fnmadd_ps(b, ray.dz, fz);
-  const __m256 perp2 = _mm256_fmadd_ps(px, px, _mm256_fmadd_ps(py, py, _mm256_mul_ps(pz, pz)));
-  const __m256 discriminant = _mm256_sub_ps(r2, perp2);
   has_roots = _mm256_cmp_ps(discriminant, zero, _CMP_GE_OQ);
-  const __m256 c =
-      _mm256_sub_ps(_mm256_fmadd_ps(fx, fx, _mm256_fmadd_ps(fy, fy, _mm256_mul_ps(fz, fz))), r2);
   // The roots sum to -2b and multiply to c: from outside (c > 0) a sphere behind the origin
   // (b > 0) has no root ahead. Most groups hold only such spheres and misses, and skip the
   // square root and the division.
@@ -136,6 +169,63 @@ inline bool first_roots(const RayLanes& ray, const SphereColumns& spheres, std::
   return true;
 }
 
+/// For the eight spheres at `base`: in each lane the first root past t_min (the near root, or
+/// the far one from inside), and in `has_roots` whether the ray meets the sphere at all.
+/// Returns false, leaving both unset, when no lane can have a root ahead of the ray.
+inline bool first_roots(const RayLanes& ray, const SphereColumns& spheres, std::size_t base,
+                        __m256& t, __m256& has_roots) {
+  const __m256 fx = _mm256_sub_ps(ray.ox, _mm256_load_ps(spheres.cx + base));
+  const __m256 fy = _mm256_sub_ps(ray.oy, _mm256_load_ps(spheres.cy + base));
+  const __m256 fz = _mm256_sub_ps(ray.oz, _mm256_load_ps(spheres.cz + base));
+  const __m256 r2 = _mm256_load_ps(spheres.r2 + base);
+  const __m256 b =
+      _mm256_fmadd_ps(fx, ray.dx, _mm256_fmadd_ps(fy, ray.dy, _mm256_mul_ps(fz, ray.dz)));
+  const __m256 px = _mm256_fnmadd_ps(b, ray.dx, fx);
+  const __m256 py = _mm256_fnmadd_ps(b, ray.dy, fy);
+  const __m256 pz = _mm256_fnmadd_ps(b, ray.dz, fz);
+  const __m256 perp2 = _mm256_fmadd_ps(px, px, _mm256_fmadd_ps(py, py, _mm256_mul_ps(pz, pz)));
+  const __m256 discriminant = _mm256_sub_ps(r2, perp2);
+  const __m256 c =
+      _mm256_sub_ps(_mm256_fmadd_ps(fx, fx, _mm256_fmadd_ps(fy, fy, _mm256_mul_ps(fz, fz))), r2);
+  return first_roots_from(ray, b, c, discriminant, t, has_roots);
+}
+
+/// first_roots for anchored spheres: intersect_anchored_sphere, eight at a time, with the
+/// accurate form of the discriminant in each lane.
+inline bool first_roots(const RayLanes& ray, const AnchoredColumns& spheres, std::size_t base,
+                        __m256& t, __m256& has_roots) {
+  const __m256 gx = _mm256_sub_ps(ray.ox, _mm256_load_ps(spheres.ax + base));
+  const __m256 gy = _mm256_sub_ps(ray.oy, _mm256_load_ps(spheres.ay + base));
+  const __m256 gz = _mm256_sub_ps(ray.oz, _mm256_load_ps(spheres.az + base));
+  const __m256 mx = _mm256_load_ps(spheres.mx + base);
+  const __m256 my = _mm256_load_ps(spheres.my + base);
+  const __m256 mz = _mm256_load_ps(spheres.mz + base);
+  const __m256 r2 = _mm256_load_ps(spheres.r2 + base);
+  const __m256 fx = _mm256_add_ps(gx, mx);
+  const __m256 fy = _mm256_add_ps(gy, my);
+  const __m256 fz = _mm256_add_ps(gz, mz);
+  const __m256 c = _mm256_fmadd_ps(
+      gx, _mm256_add_ps(fx, mx),
+      _mm256_fmadd_ps(gy, _mm256_add_ps(fy, my), _mm256_mul_ps(gz, _mm256_add_ps(fz, mz))));
+  const __m256 b =
+      _mm256_fmadd_ps(fx, ray.dx, _mm256_fmadd_ps(fy, ray.dy, _mm256_mul_ps(fz, ray.dz)));
+  // Near the sphere b^2 - c, else Haines's form (see anchored_discriminant). Rays from inside
+  // a room are near all of its walls: then Haines's form is skipped. The padding lanes, whose
+  // anchors are NaN, count as near (an unordered comparison) and have a NaN discriminant.
+  const __m256 near_form = _mm256_fmsub_ps(b, b, c);
+  const __m256 abs_c = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), c);
+  const __m256 near = _mm256_cmp_ps(abs_c, r2, _CMP_NGT_UQ);
+  __m256 discriminant = near_form;
+  if (_mm256_movemask_ps(near) != 0xFF) {
+    const __m256 px = _mm256_fnmadd_ps(b, ray.dx, fx);
+    const __m256 py = _mm256_fnmadd_ps(b, ray.dy, fy);
+    const __m256 pz = _mm256_fnmadd_ps(b, ray.dz, fz);
+    const __m256 perp2 = _mm256_fmadd_ps(px, px, _mm256_fmadd_ps(py, py, _mm256_mul_ps(pz, pz)));
+    discriminant = _mm256_blendv_ps(_mm256_sub_ps(r2, perp2), near_form, near);
+  }
+  return first_roots_from(ray, b, c, discriminant, t, has_roots);
+}
+
 /// comes_before, lane by lane (sphere ids compare unsigned, as std::uint32_t do).
 inline __m256 comes_before(const HitLanes& a, const HitLanes& b) {
   const __m256i b_not_above_a = _mm256_cmpeq_epi32(_mm256_min_epu32(a.sphere, b.sphere), b.sphere);
@@ -145,7 +235,8 @@ inline __m256 comes_before(const HitLanes& a, const HitLanes& b) {
 }
 
 /// test_sphere for the eight spheres at `base`, each lane keeping its own best.
-inline bool test_8_spheres(const RayLanes& ray, const SphereColumns& spheres, std::size_t base,
+template <class Columns>
+inline bool test_8_spheres(const RayLanes& ray, const Columns& spheres, std::size_t base,
                            HitLanes& best) {
   __m256 t, has_roots;
   if (!first_roots(ray, spheres, base, t, has_roots)) return false;
@@ -180,30 +271,35 @@ inline SphereHit first_in_hit_order(const HitLanes& lanes) {
 }
 
 /// test_8_spheres over all of `spheres`; with kAnyHit, stops at the first group with a hit.
-template <bool kAnyHit>
-inline bool scan(const Ray& ray, const SphereColumns& spheres, HitLanes& best) {
-  const RayLanes ray_lanes(ray);
+template <bool kAnyHit, class Columns>
+inline bool scan(const RayLanes& ray, const Columns& spheres, HitLanes& best) {
   bool found = false;
   for (std::size_t base = 0; base < spheres.size; base += kWidth) {
-    if (!test_8_spheres(ray_lanes, spheres, base, best)) continue;
+    if (!test_8_spheres(ray, spheres, base, best)) continue;
     found = true;
     if constexpr (kAnyHit) break;
   }
   return found;
 }
 
-/// The 8-wide form of glint::test_spheres over all of `spheres`.
-inline bool closest_hit(const Ray& ray, const SphereColumns& spheres, SphereHit& best) {
+/// The 8-wide form of glint::test_spheres over all of `sets` (SphereColumns or
+/// AnchoredColumns), one after the other with one reduction at the end: a scene's walls and
+/// its other spheres cost one query.
+template <class... Columns>
+inline bool closest_hit(const Ray& ray, SphereHit& best, const Columns&... sets) {
+  const RayLanes ray_lanes(ray);
   HitLanes lanes(best);
-  if (!scan<false>(ray, spheres, lanes)) return false;
+  if (!(scan<false>(ray_lanes, sets, lanes) | ...)) return false;
   best = first_in_hit_order(lanes);
   return true;
 }
 
-/// Whether any of `spheres` is hit before `bound`.
-inline bool any_hit(const Ray& ray, const SphereColumns& spheres, const SphereHit& bound) {
+/// Whether any sphere of `sets` is hit before `bound`.
+template <class... Columns>
+inline bool any_hit(const Ray& ray, const SphereHit& bound, const Columns&... sets) {
+  const RayLanes ray_lanes(ray);
   HitLanes lanes(bound);
-  return scan<true>(ray, spheres, lanes);
+  return (scan<true>(ray_lanes, sets, lanes) || ...);
 }
 
 }  // namespace avx2

@@ -4,9 +4,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <new>
-#include <vector>
 
+#include "glint/detail/aligned_array.hpp"
 #include "glint/geometry/accelerator.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/simd.hpp"
@@ -76,22 +75,21 @@ class SphereSet {
   /// The queries with the 8-wide kernel.
   bool closest_hit_avx2(const Ray& ray, SphereHit& hit) const {
     SphereHit best = hit_to_beat(ray, hit);
-    if (!avx2::closest_hit(ray, columns(), best)) return false;
+    if (!avx2::closest_hit(ray, best, columns())) return false;
     hit = best;
     return true;
   }
   bool any_hit_avx2(const Ray& ray) const {
-    return avx2::any_hit(ray, columns(), hit_to_beat(ray, SphereHit{}));
+    return avx2::any_hit(ray, hit_to_beat(ray, SphereHit{}), columns());
   }
-#endif
 
- private:
-#ifdef GLINT_AVX2
+  /// The storage as the 8-wide kernel reads it.
   avx2::SphereColumns columns() const {
     return {cx_.data(), cy_.data(), cz_.data(), r2_.data(), ids_.data(), count_};
   }
 #endif
 
+ private:
   void grow() {
     // Padding spheres have squared radius -1: no ray meets them.
     const std::size_t new_size = cx_.size() + kLanes;
@@ -102,23 +100,8 @@ class SphereSet {
     ids_.resize(new_size, kNoSphere);
   }
 
-  template <typename T>
-  struct AlignedAllocator {
-    using value_type = T;
-    AlignedAllocator() = default;
-    template <typename U>
-    AlignedAllocator(const AlignedAllocator<U>&) {}
-    T* allocate(std::size_t n) {
-      return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(32)));
-    }
-    void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t(32)); }
-    bool operator==(const AlignedAllocator&) const { return true; }
-  };
-  template <typename T>
-  using AlignedArray = std::vector<T, AlignedAllocator<T>>;
-
-  AlignedArray<float> cx_, cy_, cz_, r2_;
-  AlignedArray<std::uint32_t> ids_;
+  detail::AlignedArray<float> cx_, cy_, cz_, r2_;
+  detail::AlignedArray<std::uint32_t> ids_;
   std::size_t count_ = 0;
 };
 

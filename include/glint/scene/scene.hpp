@@ -1,12 +1,15 @@
 #pragma once
 // The render-ready scene: immutable after build, shared read-only by all render threads.
-// Geometry lives in two accelerators: a SphereSet (structure of arrays, scanned with SIMD) for
-// small scenes and for huge spheres such as walls, whose boxes would swallow everything in a
-// hierarchy, and a SphereBvh for the many ordinary spheres of large scenes. What shading needs
-// per sphere lives in one contiguous array of SurfaceProperties, touched only for a hit sphere.
-// Of the description, the scene keeps only what rendering and its error messages need.
+// Geometry lives in three accelerators: a WallSet for huge spheres such as walls and floors,
+// whose boxes would swallow everything in a hierarchy and whose surfaces near the camera need
+// the anchored kernel (geometry/ray_sphere.hpp) to be exact in float; a SphereSet (structure
+// of arrays, scanned with SIMD) for the other spheres of small scenes; and a SphereBvh for the
+// many ordinary spheres of large scenes. What shading needs per sphere lives in one contiguous
+// array of SurfaceProperties, touched only for a hit sphere. Of the description, the scene
+// keeps only what rendering and its error messages need.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -17,6 +20,7 @@
 #include "glint/geometry/ray_sphere.hpp"
 #include "glint/geometry/sphere_bvh.hpp"
 #include "glint/geometry/sphere_set.hpp"
+#include "glint/geometry/wall_set.hpp"
 #include "glint/scene/emitters.hpp"
 #include "glint/scene/inclusion_tree.hpp"
 #include "glint/scene/scene_description.hpp"
@@ -59,6 +63,7 @@ class Scene {
     scene.lights_ = description.lights;
     const InclusionTree tree = build_inclusion_tree(description);
     const float huge_radius = huge_radius_threshold(description);
+    const bool linear = description.spheres.size() <= kLinearSceneSize;
     std::vector<SphereBvh::Input> hierarchy_spheres;
     std::vector<SphereEmitter> emitters;
     scene.surfaces_.reserve(description.spheres.size());
@@ -66,7 +71,9 @@ class Scene {
     for (std::size_t i = 0; i < description.spheres.size(); ++i) {
       const SphereDescription& sphere = description.spheres[i];
       const auto id = static_cast<std::uint32_t>(i);
-      if (sphere.radius >= huge_radius)
+      if (is_wall(sphere, huge_radius, description.camera.position))
+        scene.walls_.add(sphere.center, sphere.radius, id, description.camera.position);
+      else if (linear)
         scene.linear_.add(sphere.center, sphere.radius, id);
       else
         hierarchy_spheres.push_back({sphere.center, sphere.radius, id});
@@ -91,7 +98,10 @@ class Scene {
     SphereHit hit;
     hit.t = ray.t_max;
     bool found = origin_sphere_hit(ray, hit);
-    if (!linear_.empty()) found = linear_.closest_hit(ray, hit) || found;
+    if (!walls_.empty())
+      found = closest_linear_hit(ray, hit) || found;
+    else if (!linear_.empty())
+      found = linear_.closest_hit(ray, hit) || found;
     if (!hierarchy_.empty()) found = hierarchy_.closest_hit(ray, hit) || found;
     if (!found) return std::nullopt;
     return hit;
@@ -101,7 +111,8 @@ class Scene {
   bool occluded(const Ray& ray) const {
     SphereHit hit;
     hit.t = ray.t_max;
-    return origin_sphere_hit(ray, hit) || (!linear_.empty() && linear_.any_hit(ray)) ||
+    return origin_sphere_hit(ray, hit) ||
+           (!walls_.empty() ? any_linear_hit(ray) : !linear_.empty() && linear_.any_hit(ray)) ||
            (!hierarchy_.empty() && hierarchy_.any_hit(ray));
   }
 
@@ -128,15 +139,17 @@ class Scene {
   const std::string& source() const { return source_; }
 
   /// Scenes up to this many spheres are scanned linearly: with SIMD, that beats a hierarchy.
+  /// (Their walls, like those of larger scenes, are in the WallSet.)
   static constexpr std::size_t kLinearSceneSize = 64;
 
  private:
   Scene() = default;
 
-  /// Spheres at least this large stay out of the hierarchy: the walls of a room (radius 1e5
-  /// around a scene of size 100) would make every box in it enormous.
+  /// Spheres at least this large are walls: 100 times the median radius, such as the walls of
+  /// a room (radius 1e5 around a scene of size 100), which would make every box of a hierarchy
+  /// enormous.
   static float huge_radius_threshold(const SceneDescription& description) {
-    if (description.spheres.size() <= kLinearSceneSize) return 0.0f;
+    if (description.spheres.empty()) return 0.0f;
     std::vector<float> radii;
     radii.reserve(description.spheres.size());
     for (const SphereDescription& s : description.spheres)
@@ -144,6 +157,42 @@ class Scene {
     auto middle = radii.begin() + std::ptrdiff_t(radii.size() / 2);
     std::nth_element(radii.begin(), middle, radii.end());
     return 100.0f * *middle;
+  }
+
+  /// Whether a sphere goes to the WallSet: a huge one (see huge_radius_threshold), or one whose
+  /// surface is nearer the camera than its radius, where the anchored kernel's error, about u
+  /// times the distance from the camera to the surface, is below the plain kernel's u r. This
+  /// catches what the median misses: a lone floor, or a room whose walls are most of its
+  /// spheres.
+  static bool is_wall(const SphereDescription& sphere, float huge_radius, const Vec3& camera) {
+    if (sphere.radius >= huge_radius) return true;
+    const double distance = glm::length(glm::dvec3(camera) - glm::dvec3(sphere.center));
+    return std::abs(distance - double(sphere.radius)) < double(sphere.radius);
+  }
+
+  // The queries of the walls and the linear set together: in one 8-wide scan where there is
+  // AVX2, so that a small scene pays one ray broadcast and one reduction for both. They stay
+  // out of line: inlined into every caller, they changed which of the callers' own
+  // multiply-adds GCC contracts into FMAs, and scenes without walls lost the last bits of
+  // their images in some variants; out of line, such a scene (which takes the linear set's own
+  // queries) renders byte for byte as before walls had a set of their own.
+  [[gnu::noinline]] bool closest_linear_hit(const Ray& ray, SphereHit& hit) const {
+#ifdef GLINT_AVX2
+    SphereHit best = hit_to_beat(ray, hit);
+    if (!avx2::closest_hit(ray, best, walls_.columns(), linear_.columns())) return false;
+    hit = best;
+    return true;
+#else
+    const bool found = walls_.closest_hit(ray, hit);
+    return (!linear_.empty() && linear_.closest_hit(ray, hit)) || found;
+#endif
+  }
+  [[gnu::noinline]] bool any_linear_hit(const Ray& ray) const {
+#ifdef GLINT_AVX2
+    return avx2::any_hit(ray, hit_to_beat(ray, SphereHit{}), walls_.columns(), linear_.columns());
+#else
+    return walls_.any_hit(ray) || (!linear_.empty() && linear_.any_hit(ray));
+#endif
   }
 
   // A ray leaving its origin sphere outwards cannot meet it again; heading inwards it meets
@@ -165,6 +214,7 @@ class Scene {
   Color background_{0.0f};
   std::vector<PointLight> lights_;
   EmitterTable emitters_;
+  WallSet walls_;
   SphereSet linear_;
   SphereBvh hierarchy_;
   std::vector<SurfaceProperties> surfaces_;

@@ -20,6 +20,22 @@
 
 namespace glint {
 
+/// Limits on geometry, beyond which float arithmetic would no longer render a scene correctly.
+/// A scene stores its numbers as floats (about 7 significant digits); within these limits the
+/// ray/sphere kernels answer to that precision (geometry/ray_sphere.hpp) and no squared distance
+/// they form comes near float's overflow at 3.4e38.
+namespace limits {
+/// The largest sphere radius: 1e10 covers the walls of the largest random scene (1.25e9) with a
+/// margin; tests/render/huge_sphere_test.cpp checks floors up to it against the exact sphere
+/// and the plane, and at the largest coordinates.
+inline constexpr float max_sphere_radius = 1e10f;
+/// The largest magnitude of a coordinate of a sphere's centre, the camera's position or a
+/// light's position: ten times the largest radius, so that a floor of that radius can sit
+/// anywhere near the origin, while |f|^2 <= 3 (2 * 1e11 + 1e10)^2 ~ 1.4e23 stays far from
+/// overflow.
+inline constexpr float max_coordinate = 1e11f;
+}  // namespace limits
+
 namespace detail {
 
 inline bool finite(const Vec3& v) {
@@ -27,6 +43,15 @@ inline bool finite(const Vec3& v) {
 }
 inline bool non_negative(const Vec3& v) {
   return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f;
+}
+
+/// An empty string if every coordinate of the point is within limits::max_coordinate, else the
+/// complaint about `what` (e.g. "sphere center"). Only for finite points.
+inline std::string coordinate_problem(const char* what, const Vec3& point) {
+  const float largest = max_of(std::abs(point.x), max_of(std::abs(point.y), std::abs(point.z)));
+  if (largest <= limits::max_coordinate) return {};
+  return concat({what, " coordinates must be within +-", format_number(limits::max_coordinate),
+                 " (the scene format's limit), got ", format_number(largest)});
 }
 
 inline void check_material(const SceneDescription& scene, const Material& m, int line) {
@@ -83,6 +108,9 @@ inline void check_camera(const SceneDescription& scene) {
   if (!finite(forward_f) || !finite(right_f) || std::abs(glm::length(forward_f) - 1.0f) > 1e-3f ||
       std::abs(glm::length(right_f) - 1.0f) > 1e-3f)
     fail("camera vectors are too large or too small to build a viewing basis in float");
+  if (const std::string problem = coordinate_problem("camera position", camera.position);
+      !problem.empty())
+    fail(problem);
   if (!(camera.fov_degrees > 0.0f && camera.fov_degrees < 180.0f))
     fail(concat({"camera fov must be strictly between 0 and 180 degrees, got ",
                  format_number(camera.fov_degrees)}));
@@ -113,6 +141,9 @@ inline void check_light(const SceneDescription& scene, const PointLight& light) 
     throw SceneError(scene.source, light.line, what);
   };
   if (!finite(light.position)) fail("light position must be finite");
+  if (const std::string problem = coordinate_problem("light position", light.position);
+      !problem.empty())
+    fail(problem);
   if (!(light.intensity >= 0.0f) || !std::isfinite(light.intensity))
     fail("light intensity must be finite and non-negative");
   if (!finite(light.color) || !non_negative(light.color))
@@ -124,8 +155,14 @@ inline void check_sphere(const SceneDescription& scene, const SphereDescription&
     throw SceneError(scene.source, sphere.line, what);
   };
   if (!finite(sphere.center)) fail("sphere center must be finite");
+  if (const std::string problem = coordinate_problem("sphere center", sphere.center);
+      !problem.empty())
+    fail(problem);
   if (!(sphere.radius > 0.0f) || !std::isfinite(sphere.radius))
     fail(concat({"sphere radius must be positive and finite, got ", format_number(sphere.radius)}));
+  if (sphere.radius > limits::max_sphere_radius)
+    fail(concat({"sphere radius must be at most ", format_number(limits::max_sphere_radius),
+                 " (the scene format's limit), got ", format_number(sphere.radius)}));
   check_material(scene, sphere.material, sphere.line);
 }
 

@@ -1,0 +1,27 @@
+#pragma once
+// A std::vector whose storage is aligned for 32-byte (AVX) loads, for the structure-of-arrays
+// columns of the SIMD kernels.
+
+#include <cstddef>
+#include <new>
+#include <vector>
+
+namespace glint::detail {
+
+template <typename T>
+struct AlignedAllocator {
+  using value_type = T;
+  AlignedAllocator() = default;
+  template <typename U>
+  AlignedAllocator(const AlignedAllocator<U>&) {}
+  T* allocate(std::size_t n) {
+    return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(32)));
+  }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t(32)); }
+  bool operator==(const AlignedAllocator&) const { return true; }
+};
+
+template <typename T>
+using AlignedArray = std::vector<T, AlignedAllocator<T>>;
+
+}  // namespace glint::detail
