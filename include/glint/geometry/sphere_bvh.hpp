@@ -25,8 +25,9 @@ class SphereBvh {
   using Input = bvh::SphereInput;
 
   SphereBvh() = default;
-  explicit SphereBvh(std::vector<Input> spheres)
-      : tree_(bvh::build_binary_tree(spheres)), wide_(bvh::collapse_to_wide(tree_.nodes)) {}
+  /// Built on up to `cores` cores (0: all there are), into the same tree whatever their number.
+  explicit SphereBvh(std::vector<Input> spheres, std::size_t cores = 0)
+      : tree_(bvh::build_binary_tree(spheres, cores)), wide_(bvh::collapse_to_wide(tree_.nodes)) {}
 
   std::size_t size() const { return tree_.spheres.size(); }
   bool empty() const { return tree_.spheres.empty(); }
