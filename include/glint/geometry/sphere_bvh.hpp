@@ -1,7 +1,7 @@
 #pragma once
 // A bounding volume hierarchy over spheres, for scenes too large for a linear SIMD scan: a
 // binary tree built with a binned surface area heuristic (bvh/build.hpp), collapsed into a
-// 4-wide tree for traversal (bvh/wide.hpp, bvh/traverse.hpp), whose leaves are tested by the
+// wide tree for traversal (bvh/wide.hpp, bvh/traverse.hpp), whose leaves are tested by the
 // leaf kernel that SphereSet uses too (sphere_kernel.hpp).
 
 #include <cstddef>

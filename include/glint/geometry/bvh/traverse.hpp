@@ -1,5 +1,5 @@
 #pragma once
-// Closest-hit and any-hit traversal of the 4-wide tree. It knows boxes only: the spheres of a
+// Closest-hit and any-hit traversal of the wide tree. It knows boxes only: the spheres of a
 // leaf are tested by the caller's leaf function. Leaves are tested nearest first as soon as
 // their node is reached, so that their hits prune the inner children; inner children are
 // visited nearest first, and a subtree whose box starts beyond the best hit is skipped.
@@ -26,27 +26,48 @@ concept LeafTest = requires(F& test_leaf, std::uint32_t first, std::uint32_t cou
   { test_leaf(first, count, best) } -> std::same_as<bool>;
 };
 
-/// Entry distances into a wide node's four boxes; +infinity where the ray misses the box
-/// within [t_min, t_max].
+/// Entry distances into a wide node's boxes; +infinity where the ray misses the box within
+/// [t_min, t_max].
 inline void enter_boxes(const WideNode& node, const Vec3& origin, const Vec3& inverse_direction,
-                        float t_min, float t_max, float (&enter)[4]) {
-#ifdef GLINT_SSE41
-  const __m128 ox = _mm_set1_ps(origin.x), oy = _mm_set1_ps(origin.y), oz = _mm_set1_ps(origin.z);
-  const __m128 ix = _mm_set1_ps(inverse_direction.x), iy = _mm_set1_ps(inverse_direction.y),
-               iz = _mm_set1_ps(inverse_direction.z);
-  const __m128 ax = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_x), ox), ix);
-  const __m128 bx = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_x), ox), ix);
-  const __m128 ay = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_y), oy), iy);
-  const __m128 by = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_y), oy), iy);
-  const __m128 az = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_z), oz), iz);
-  const __m128 bz = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_z), oz), iz);
-  const __m128 near = _mm_max_ps(_mm_max_ps(_mm_min_ps(ax, bx), _mm_min_ps(ay, by)),
-                                 _mm_max_ps(_mm_min_ps(az, bz), _mm_set1_ps(t_min)));
-  const __m128 far = _mm_min_ps(_mm_min_ps(_mm_max_ps(ax, bx), _mm_max_ps(ay, by)),
-                                _mm_min_ps(_mm_max_ps(az, bz), _mm_set1_ps(t_max)));
-  _mm_storeu_ps(enter, _mm_blendv_ps(_mm_set1_ps(kInfinity), near, _mm_cmple_ps(near, far)));
+                        float t_min, float t_max, float (&enter)[kWideWidth]) {
+  static_assert(kWideWidth == 8);
+#if defined(GLINT_AVX2)
+  const __m256 ox = _mm256_set1_ps(origin.x), oy = _mm256_set1_ps(origin.y),
+               oz = _mm256_set1_ps(origin.z);
+  const __m256 ix = _mm256_set1_ps(inverse_direction.x), iy = _mm256_set1_ps(inverse_direction.y),
+               iz = _mm256_set1_ps(inverse_direction.z);
+  const __m256 ax = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.lower_x), ox), ix);
+  const __m256 bx = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.upper_x), ox), ix);
+  const __m256 ay = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.lower_y), oy), iy);
+  const __m256 by = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.upper_y), oy), iy);
+  const __m256 az = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.lower_z), oz), iz);
+  const __m256 bz = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.upper_z), oz), iz);
+  const __m256 near = _mm256_max_ps(_mm256_max_ps(_mm256_min_ps(ax, bx), _mm256_min_ps(ay, by)),
+                                    _mm256_max_ps(_mm256_min_ps(az, bz), _mm256_set1_ps(t_min)));
+  const __m256 far = _mm256_min_ps(_mm256_min_ps(_mm256_max_ps(ax, bx), _mm256_max_ps(ay, by)),
+                                   _mm256_min_ps(_mm256_max_ps(az, bz), _mm256_set1_ps(t_max)));
+  _mm256_storeu_ps(enter, _mm256_blendv_ps(_mm256_set1_ps(kInfinity), near,
+                                           _mm256_cmp_ps(near, far, _CMP_LE_OQ)));
+#elif defined(GLINT_SSE41)
+  for (int half = 0; half < kWideWidth; half += 4) {
+    const __m128 ox = _mm_set1_ps(origin.x), oy = _mm_set1_ps(origin.y), oz = _mm_set1_ps(origin.z);
+    const __m128 ix = _mm_set1_ps(inverse_direction.x), iy = _mm_set1_ps(inverse_direction.y),
+                 iz = _mm_set1_ps(inverse_direction.z);
+    const __m128 ax = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_x + half), ox), ix);
+    const __m128 bx = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_x + half), ox), ix);
+    const __m128 ay = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_y + half), oy), iy);
+    const __m128 by = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_y + half), oy), iy);
+    const __m128 az = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_z + half), oz), iz);
+    const __m128 bz = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_z + half), oz), iz);
+    const __m128 near = _mm_max_ps(_mm_max_ps(_mm_min_ps(ax, bx), _mm_min_ps(ay, by)),
+                                   _mm_max_ps(_mm_min_ps(az, bz), _mm_set1_ps(t_min)));
+    const __m128 far = _mm_min_ps(_mm_min_ps(_mm_max_ps(ax, bx), _mm_max_ps(ay, by)),
+                                  _mm_min_ps(_mm_max_ps(az, bz), _mm_set1_ps(t_max)));
+    _mm_storeu_ps(enter + half,
+                  _mm_blendv_ps(_mm_set1_ps(kInfinity), near, _mm_cmple_ps(near, far)));
+  }
 #else
-  for (int c = 0; c < 4; ++c) {
+  for (int c = 0; c < kWideWidth; ++c) {
     const float ax = (node.lower_x[c] - origin.x) * inverse_direction.x;
     const float bx = (node.upper_x[c] - origin.x) * inverse_direction.x;
     const float ay = (node.lower_y[c] - origin.y) * inverse_direction.y;
@@ -63,13 +84,13 @@ inline void enter_boxes(const WideNode& node, const Vec3& origin, const Vec3& in
 
 /// The slots of the children the ray enters, nearest first.
 struct ChildOrder {
-  int slot[4];
+  int slot[kWideWidth];
   int count = 0;
 };
 
-inline ChildOrder children_nearest_first(const WideNode& node, const float (&enter)[4]) {
+inline ChildOrder children_nearest_first(const WideNode& node, const float (&enter)[kWideWidth]) {
   ChildOrder order;
-  for (int c = 0; c < 4; ++c) {
+  for (int c = 0; c < kWideWidth; ++c) {
     if (enter[c] == kInfinity || node.child[c] == kEmptySlot) continue;
     int k = order.count++;
     while (k > 0 && enter[order.slot[k - 1]] > enter[c]) {
@@ -99,8 +120,8 @@ template <bool kAnyHit, LeafTest TestLeaf>
     std::uint32_t node;
     float enter;
   };
-  // Each level pushes at most three more nodes than it pops, and the depth is bounded.
-  std::array<Pending, 3 * (kMaxDepth + 2)> stack;
+  // Each level pushes at most kWideWidth - 1 more nodes than it pops, and the depth is bounded.
+  std::array<Pending, (kWideWidth - 1) * (kMaxDepth + 2)> stack;
   int top = 0;
   stack[std::size_t(top++)] = Pending{0, ray.t_min};
   bool found = false;
@@ -108,7 +129,7 @@ template <bool kAnyHit, LeafTest TestLeaf>
     const Pending pending = stack[std::size_t(--top)];
     if (pending.enter > nearest.t) continue;
     const WideNode& node = nodes[pending.node];
-    float enter[4];
+    float enter[kWideWidth];
     enter_boxes(node, ray.origin, inverse_direction, ray.t_min, nearest.t, enter);
     const ChildOrder order = children_nearest_first(node, enter);
     for (int k = 0; k < order.count; ++k) {

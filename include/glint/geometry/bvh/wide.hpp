@@ -1,5 +1,5 @@
 #pragma once
-// Collapsing the binary tree into a 4-wide one for traversal: each wide node holds its four
+// Collapsing the binary tree into a kWideWidth-wide one for traversal: each wide node holds its
 // children's boxes in structure-of-arrays form, so that one SIMD pass tests them all.
 
 #include <array>
@@ -12,13 +12,17 @@
 
 namespace glint::bvh {
 
-/// Four child slots, each an inner node (count 0; child = index of its wide node), a leaf
+/// Children per wide node: eight, tested at once by one AVX2 pass (two SSE passes, or a loop,
+/// without it). Fewer levels than a 4-wide tree, so fewer dependent node loads per ray.
+inline constexpr int kWideWidth = 8;
+
+/// kWideWidth child slots, each an inner node (count 0; child = index of its wide node), a leaf
 /// (count > 0; child = its first sphere) or empty (child = kEmptySlot).
-struct alignas(16) WideNode {
-  float lower_x[4], lower_y[4], lower_z[4];
-  float upper_x[4], upper_y[4], upper_z[4];
-  std::uint32_t child[4];
-  std::uint32_t count[4];
+struct alignas(32) WideNode {
+  float lower_x[kWideWidth], lower_y[kWideWidth], lower_z[kWideWidth];
+  float upper_x[kWideWidth], upper_y[kWideWidth], upper_z[kWideWidth];
+  std::uint32_t child[kWideWidth];
+  std::uint32_t count[kWideWidth];
 };
 
 inline constexpr std::uint32_t kEmptySlot = 0xffffffffu;
@@ -27,12 +31,13 @@ namespace detail {
 
 /// The binary nodes that become the children of one wide node.
 struct WideChildren {
-  std::array<std::uint32_t, 4> node{};
+  std::array<std::uint32_t, kWideWidth> node{};
   int count = 0;
 };
 
 /// The children of binary node `root` as a wide node: its two children, then repeatedly the
-/// inner child of largest area replaced by its own two, until there are four or only leaves.
+/// inner child of largest area replaced by its own two, until there are kWideWidth or only
+/// leaves.
 /// Pulling the largest boxes up keeps the wide tree's surface area low.
 inline WideChildren gather_children(const std::vector<Node>& nodes, std::uint32_t root) {
   WideChildren children;
@@ -42,7 +47,7 @@ inline WideChildren gather_children(const std::vector<Node>& nodes, std::uint32_
   }
   children.node[std::size_t(children.count++)] = root + 1;
   children.node[std::size_t(children.count++)] = nodes[root].offset;
-  while (children.count < 4) {
+  while (children.count < kWideWidth) {
     int widest = -1;
     float widest_area = -1.0f;
     for (int c = 0; c < children.count; ++c) {
@@ -88,7 +93,7 @@ inline std::uint32_t collapse(const std::vector<Node>& nodes, std::uint32_t root
   const WideChildren children = gather_children(nodes, root);
   const auto index = static_cast<std::uint32_t>(wide.size());
   WideNode& node = wide.emplace_back();
-  for (int c = 0; c < 4; ++c) {
+  for (int c = 0; c < kWideWidth; ++c) {
     if (c < children.count)
       set_slot(node, c, nodes[children.node[std::size_t(c)]]);
     else
@@ -107,11 +112,11 @@ inline std::uint32_t collapse(const std::vector<Node>& nodes, std::uint32_t root
 
 }  // namespace detail
 
-/// The 4-wide tree of a binary tree, the root first; empty for an empty tree.
+/// The wide tree of a binary tree, the root first; empty for an empty tree.
 inline std::vector<WideNode> collapse_to_wide(const std::vector<Node>& nodes) {
   std::vector<WideNode> wide;
   if (nodes.empty()) return wide;
-  wide.reserve(nodes.size() / 2 + 1);
+  wide.reserve(nodes.size() / (kWideWidth - 1) + 1);
   detail::collapse(nodes, 0, wide);
   return wide;
 }
