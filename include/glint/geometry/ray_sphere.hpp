@@ -25,6 +25,14 @@ struct SphereRoots {
   float far;
 };
 
+/// The roots of t^2 + 2 b t + c = 0 from a non-negative discriminant b^2 - c, however it was
+/// computed: q = -(b + sign(b) sqrt(discriminant)) and c / q, the stable pair.
+inline SphereRoots roots_from(float b, float c, float discriminant) {
+  const float q = -(b + std::copysign(std::sqrt(discriminant), b));
+  const float t0 = c / q;
+  return {min_of(t0, q), max_of(t0, q)};
+}
+
 /// Both ray parameters where the ray meets the sphere of squared radius `radius_squared`,
 /// near <= far; false if it misses. `direction` must be unit length.
 inline bool intersect_sphere_squared_radius(const Vec3& origin, const Vec3& direction,
@@ -36,11 +44,7 @@ inline bool intersect_sphere_squared_radius(const Vec3& origin, const Vec3& dire
   const float discriminant = radius_squared - glm::dot(perpendicular, perpendicular);
   if (!(discriminant >= 0.0f)) return false;
   const float c = glm::dot(f, f) - radius_squared;
-  const float q = -(b + std::copysign(std::sqrt(discriminant), b));
-  const float t0 = c / q;
-  const float t1 = q;
-  roots.near = min_of(t0, t1);
-  roots.far = max_of(t0, t1);
+  roots = roots_from(b, c, discriminant);
   return true;
 }
 
@@ -104,11 +108,7 @@ inline bool intersect_anchored_sphere(const Vec3& origin, const Vec3& direction,
   const float b = glm::dot(f, direction);
   const float discriminant = anchored_discriminant(f, direction, sphere, b, c);
   if (!(discriminant >= 0.0f)) return false;
-  const float q = -(b + std::copysign(std::sqrt(discriminant), b));
-  const float t0 = c / q;
-  const float t1 = q;
-  roots.near = min_of(t0, t1);
-  roots.far = max_of(t0, t1);
+  roots = roots_from(b, c, discriminant);
   return true;
 }
 

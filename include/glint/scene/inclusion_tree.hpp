@@ -99,6 +99,14 @@ inline std::vector<std::uint32_t> morton_order(const std::vector<SphereDescripti
   return order;
 }
 
+/// Every sphere without a parent, in the scene's medium: where both builders start.
+inline InclusionTree unnested_tree(const SceneDescription& scene) {
+  InclusionTree tree;
+  tree.parent.assign(scene.spheres.size(), kNoParent);
+  tree.outside_ior.assign(scene.spheres.size(), scene.medium_ior);
+  return tree;
+}
+
 /// The reference builder's work, given up (nullopt) once it has met more than `budget` pairs,
 /// which is checked before each sphere: so it costs at most the budget plus a sphere's pairs per
 /// core. The spheres are independent (each looks for its own containers and overlaps), so they
@@ -108,9 +116,7 @@ inline std::optional<InclusionTree> build_inclusion_tree_pairwise(const SceneDes
                                                                   std::size_t budget) {
   const auto& spheres = scene.spheres;
   const std::size_t n = spheres.size();
-  InclusionTree tree;
-  tree.parent.assign(n, kNoParent);
-  tree.outside_ior.assign(n, scene.medium_ior);
+  InclusionTree tree = unnested_tree(scene);
 
   std::vector<SphereBvh::Input> glass;
   for (std::size_t i = 0; i < n; ++i)
@@ -251,9 +257,7 @@ inline Seen seen_from(const SphereDescription& s, const SphereDescription& q) {
 inline std::optional<InclusionTree> build_inclusion_tree_fast(const SceneDescription& scene) {
   const auto& spheres = scene.spheres;
   const std::size_t n = spheres.size();
-  InclusionTree tree;
-  tree.parent.assign(n, kNoParent);
-  tree.outside_ior.assign(n, scene.medium_ior);
+  InclusionTree tree = unnested_tree(scene);
 
   std::vector<std::uint32_t> glass;
   for (std::size_t i = 0; i < n; ++i) {
