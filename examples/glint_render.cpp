@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <charconv>
 #include <climits>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -47,6 +48,9 @@ options:
                       with .png, in the current directory)
   --hdr FILE          also write linear radiance as a PFM (portable float map), FILE ending
                       in .pfm
+  --tonemap OP        how the PNG shows radiance above 1: clip (default), reinhard or aces;
+                      the PFM keeps the linear radiance
+  --exposure EV       scale the radiance by 2^EV before tone mapping the PNG (default 0)
   --spp N             samples per pixel (overrides the scene's image spp)
   --max-depth N       most bounces after the camera ray; 0 = direct light only
   --width W           image width in pixels (overrides the scene)
@@ -87,6 +91,7 @@ struct Options {
   std::string scene;
   std::optional<std::string> output;
   std::optional<std::string> hdr;
+  glint::ToneMapping tone_mapping;
   std::optional<int> spp, max_depth, width, height, threads;
   std::uint64_t seed = 0;
   std::optional<std::string> checkpoint, resume;
@@ -117,6 +122,25 @@ double parse_seconds(std::string_view option, std::string_view text) {
     throw UsageError{std::string(option) + " expects seconds from 0 to 1e9, got '" +
                      std::string(text) + "'"};
   return value;
+}
+
+/// A number of stops: a decimal number within +-glint::limits::max_exposure.
+float parse_exposure(std::string_view option, std::string_view text) {
+  float value = 0.0f;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() ||
+      !(std::abs(value) <= glint::limits::max_exposure))
+    throw UsageError{std::string(option) + " expects stops from -" +
+                     std::to_string(int(glint::limits::max_exposure)) + " to " +
+                     std::to_string(int(glint::limits::max_exposure)) + ", got '" +
+                     std::string(text) + "'"};
+  return value;
+}
+
+glint::ToneMapOperator parse_tone_map(std::string_view option, std::string_view text) {
+  if (const auto op = glint::parse_tone_map_operator(text)) return *op;
+  throw UsageError{std::string(option) + " expects " + glint::tone_map_operator_list() +
+                   ", got '" + std::string(text) + "'"};
 }
 
 /// Output formats follow the file name, and only these two exist: a picture written under
@@ -153,6 +177,10 @@ Options parse_options(int argc, char** argv) {
       options.output = image_path(arg, value(), "an 8-bit sRGB PNG", ".png");
     } else if (arg == "--hdr") {
       options.hdr = image_path(arg, value(), "a linear float PFM", ".pfm");
+    } else if (arg == "--tonemap") {
+      options.tone_mapping.op = parse_tone_map(arg, value());
+    } else if (arg == "--exposure") {
+      options.tone_mapping.exposure = parse_exposure(arg, value());
     } else if (arg == "--spp") {
       options.spp = parse_integer(arg, value(), 1, glint::limits::max_samples_per_pixel);
     } else if (arg == "--max-depth") {
@@ -434,7 +462,7 @@ int main(int argc, char** argv) {
                    signal_name(signal));
       return 128 + signal;
     }
-    std::vector<glint::FileContents> files{{output, glint::encode_png(result.film)}};
+    std::vector<glint::FileContents> files{{output, glint::encode_png(result.film, options.tone_mapping)}};
     if (options.hdr) files.push_back({*options.hdr, glint::encode_pfm(result.film)});
     if (options.checkpoint)
       files.push_back(

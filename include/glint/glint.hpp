@@ -6,6 +6,7 @@
 #include "glint/generate/random_scene.hpp"
 #include "glint/image/film.hpp"
 #include "glint/image/pixel_sums.hpp"
+#include "glint/image/tone_map.hpp"
 #include "glint/io/checkpoint.hpp"
 #include "glint/io/image_reader.hpp"
 #include "glint/io/image_writer.hpp"

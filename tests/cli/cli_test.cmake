@@ -63,6 +63,15 @@ glint_cli_test(hdr-not-pfm STATUS 2 STDERR "--hdr writes a linear float PFM: the
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.exr OUTPUT out.png)
 glint_cli_test(renders STATUS 0 STDERR "Mrays/s" EXPECT_OUTPUT OUTPUT out.png
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --spp 2)
+# Tone mapping of the PNG: the operator names and the exposure range come from tone_map.hpp.
+glint_cli_test(bad-tonemap STATUS 2 STDERR "--tonemap expects clip, reinhard or aces, got 'filmic'"
+               ARGS ${glint_cli_scenes}/tiny.scene --tonemap filmic)
+glint_cli_test(bad-exposure STATUS 2 STDERR "--exposure expects stops from -64 to 64, got '65'"
+               ARGS ${glint_cli_scenes}/tiny.scene --exposure 65)
+glint_cli_test(nan-exposure STATUS 2 STDERR "--exposure expects stops from -64 to 64, got 'nan'"
+               ARGS ${glint_cli_scenes}/tiny.scene --exposure nan)
+glint_cli_test(tonemap-aces STATUS 0 EXPECT_OUTPUT OUTPUT out.png
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --spp 2 --tonemap aces --exposure -1.5)
 glint_cli_test(bad-time-limit STATUS 2 STDERR "--time-limit expects seconds from 0 to 1e9, got '-1'"
                ARGS ${glint_cli_scenes}/tiny.scene --time-limit -1)
 glint_cli_test(bad-checkpoint-interval STATUS 2

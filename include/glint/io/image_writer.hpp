@@ -1,5 +1,5 @@
 #pragma once
-// Writing a Film: 8-bit sRGB PNG (through Debian's libstb) and linear float PFM.
+// Writing a Film: 8-bit sRGB PNG (through Debian's libstb), tone-mapped, and linear float PFM.
 //
 // Every file is written to a temporary file beside its target and renamed into place, so a
 // failed write never leaves a truncated image behind. The temporary's name is unpredictable
@@ -27,6 +27,7 @@
 
 #include "glint/error.hpp"
 #include "glint/image/film.hpp"
+#include "glint/image/tone_map.hpp"
 
 namespace glint {
 
@@ -168,21 +169,20 @@ inline void write_files(const std::vector<FileContents>& files) {
     file.commit();
 }
 
-/// 8-bit RGB, sRGB-encoded, no tone mapping: radiance above 1 clips.
-inline std::vector<std::uint8_t> to_srgb8(const Film& film) {
+/// 8-bit RGB, sRGB-encoded after `tone_mapping` (by default none: radiance above 1 clips).
+inline std::vector<std::uint8_t> to_srgb8(const Film& film, const ToneMapping& tone_mapping = {}) {
+  const float scale = tone_mapping.scale();
   std::vector<std::uint8_t> bytes;
   bytes.reserve(film.pixels().size() * 3);
-  for (const Color& c : film.pixels()) {
-    bytes.push_back(linear_to_srgb8(c.x));
-    bytes.push_back(linear_to_srgb8(c.y));
-    bytes.push_back(linear_to_srgb8(c.z));
-  }
+  for (const Color& c : film.pixels())
+    for (const float channel : {c.x, c.y, c.z})
+      bytes.push_back(linear_to_srgb8(tone_map(channel * scale, tone_mapping.op)));
   return bytes;
 }
 
 /// The PNG file of the film, in memory. Throws ImageWriteError if encoding fails.
-inline std::vector<char> encode_png(const Film& film) {
-  const std::vector<std::uint8_t> pixels = to_srgb8(film);
+inline std::vector<char> encode_png(const Film& film, const ToneMapping& tone_mapping = {}) {
+  const std::vector<std::uint8_t> pixels = to_srgb8(film, tone_mapping);
   std::vector<char> encoded;
   const auto append = [](void* context, void* data, int size) {
     auto* out = static_cast<std::vector<char>*>(context);
@@ -216,10 +216,11 @@ inline std::vector<char> encode_pfm(const Film& film) {
   return bytes;
 }
 
-inline void write_png(const Film& film, const std::filesystem::path& path) {
+inline void write_png(const Film& film, const std::filesystem::path& path,
+                      const ToneMapping& tone_mapping = {}) {
   std::vector<char> bytes;
   try {
-    bytes = encode_png(film);
+    bytes = encode_png(film, tone_mapping);
   } catch (const ImageWriteError& error) {
     throw ImageWriteError("cannot write " + path.string() + ": " + error.what());
   }
