@@ -1,15 +1,24 @@
 // Progressive passes: the schedule of pass_ends, the finished image bit for bit the one-shot
 // render_pixel mean, a stopped render bit for bit the mean of the samples of its completed
 // passes, and neither depending on the thread count, the tile size or where a stop comes from.
+// Renderer::render_tiles: the passes' tiles handed out by the caller, in any order and split
+// across several sets of sums (as glint-render-mpi's processes hold them), give render()'s
+// image bit for bit as long as each tile's passes come in order from the sums they left.
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <random>
 #include <stdexcept>
 #include <vector>
 
 #include "glint/render/renderer.hpp"
+#include "glint/render/tile_grid.hpp"
 #include "glint/variants.hpp"
 #include "small_scene.hpp"
 
@@ -61,6 +70,35 @@ glint::RenderResult stopped_after(const glint::Scene& scene, const glint::Render
   glint::RenderControl control;
   control.pass_done = [&](const glint::PassReport& r) { return r.passes_done < passes; };
   return glint::Renderer<V>::render(scene, settings, control);
+}
+
+/// A fixed list of pieces, handed out in order; counts what finished.
+class ListSource {
+ public:
+  explicit ListSource(std::vector<glint::TileWork> work) : work_(work.begin(), work.end()) {}
+  std::optional<glint::TileWork> next() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (work_.empty()) return std::nullopt;
+    glint::TileWork piece = work_.front();
+    work_.pop_front();
+    return piece;
+  }
+  void finished(const glint::TileWork& piece) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    finished_.push_back(piece.id);
+  }
+  const std::vector<std::uint64_t>& finished_ids() const { return finished_; }
+
+ private:
+  std::mutex mutex_;
+  std::deque<glint::TileWork> work_;
+  std::vector<std::uint64_t> finished_;
+};
+
+void copy_tile(const glint::Tile& tile, const glint::PixelSums& from, glint::PixelSums& to) {
+  for (int y = tile.y0; y < tile.y1; ++y)
+    for (int x = tile.x0; x < tile.x1; ++x)
+      to.at(x, y) = from.at(x, y);
 }
 
 }  // namespace
@@ -307,4 +345,78 @@ TEST_CASE("a start that does not fit the settings is refused", "[passes][resume]
   refused({&right, -1});
   CHECK(glint::Renderer<V>::render(scene, settings, glint::RenderControl{}, {&right, 6})
             .samples_per_pixel == 13);
+}
+
+TEST_CASE("the tile grid covers the image once, row by row", "[render_tiles]") {
+  const glint::TileGrid grid(21, 14, 8);
+  REQUIRE(grid.count == 6);
+  std::vector<int> covered(21 * 14, 0);
+  for (std::size_t i = 0; i < grid.count; ++i) {
+    const glint::Tile tile = grid.tile(i);
+    CHECK(tile.pixel_count() == std::size_t(tile.width()) * std::size_t(tile.height()));
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x)
+        ++covered[std::size_t(y * 21 + x)];
+  }
+  CHECK(std::all_of(covered.begin(), covered.end(), [](int n) { return n == 1; }));
+  CHECK(grid.tile(2).x1 == 21);
+  CHECK(grid.tile(2).width() == 5);
+  CHECK(grid.tile(5).height() == 6);
+}
+
+TEMPLATE_TEST_CASE("render_tiles, tile by tile in any order over two sets of sums, is render()",
+                   "[render_tiles]", glint::variants::report, glint::variants::fast) {
+  const glint::Scene scene = small_scene();
+  const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
+  const glint::RenderResult whole = glint::Renderer<TestType>::render(scene, settings);
+  const glint::TileGrid grid(settings);
+  const std::vector<int> ends = glint::pass_ends(13, 4);  // 1 2 4 8 12 13
+
+  // Two "processes", each with its own sums; every pass, each tile goes to one of them at
+  // random, its sums copied over when it moves, and the tiles come in a shuffled order.
+  std::mt19937 random(GENERATE(1u, 2u, 3u));
+  glint::PixelSums sums[2] = {{19, 13}, {19, 13}};
+  std::vector<int> holder(grid.count, 0);
+  std::uint64_t samples = 0;
+  for (std::size_t pass = 0; pass < ends.size(); ++pass) {
+    std::vector<glint::TileWork> work[2];
+    std::vector<std::size_t> order(grid.count);
+    for (std::size_t i = 0; i < order.size(); ++i)
+      order[i] = i;
+    std::shuffle(order.begin(), order.end(), random);
+    for (const std::size_t tile : order) {
+      const int to = int(random() % 2);
+      if (holder[tile] != to) copy_tile(grid.tile(tile), sums[holder[tile]], sums[to]);
+      holder[tile] = to;
+      work[to].push_back({tile, pass == 0 ? 0 : ends[pass - 1], ends[pass], tile});
+    }
+    for (int p = 0; p < 2; ++p) {
+      ListSource source(work[p]);
+      const glint::RenderStats stats = glint::Renderer<TestType>::render_tiles(
+          scene, small_settings(13, 4, p + 1, 8), sums[p], source);
+      CHECK(source.finished_ids().size() == work[p].size());
+      CHECK(stats.threads == std::min<int>(p + 1, int(grid.count)));
+      samples += stats.samples;
+    }
+  }
+  glint::PixelSums gathered(19, 13);
+  for (std::size_t tile = 0; tile < grid.count; ++tile)
+    copy_tile(grid.tile(tile), sums[holder[tile]], gathered);
+  CHECK(samples == 19u * 13u * 13u);
+  CHECK(same_bits(glint::mean_image(gathered, 13).film, whole.film));
+}
+
+TEST_CASE("render_tiles with no work returns at once; sums of another size are refused",
+          "[render_tiles]") {
+  using V = glint::variants::fast;
+  const glint::Scene scene = small_scene();
+  glint::PixelSums sums(19, 13);
+  ListSource none({});
+  const glint::RenderStats stats =
+      glint::Renderer<V>::render_tiles(scene, small_settings(13, 4, 3, 8), sums, none);
+  CHECK(stats.samples == 0);
+  CHECK(stats.threads == 3);
+  glint::PixelSums wrong(13, 19);
+  CHECK_THROWS_AS(glint::Renderer<V>::render_tiles(scene, small_settings(13, 4, 1, 8), wrong, none),
+                  glint::SettingsError);
 }

@@ -608,6 +608,9 @@ TEST_CASE("scene reader: files", "[scene_reader][file]") {
     }
     CHECK_THROWS_WITH(glint::read_scene_file(path),
                       StartsWith(path.string() + ":3: error: missing required key 'intensity'"));
+    // Its text alone, as it is: errors of the parse come from read_scene_text.
+    CHECK(glint::read_scene_file_text(path) ==
+          "sphere center=0,0,0 radius=1\n\nlight position=0,0,0\n");
   }
   SECTION("binary input stops at its first NUL byte, with the line it is on") {
     const fs::path path = dir / "binary.scene";
@@ -619,6 +622,8 @@ TEST_CASE("scene reader: files", "[scene_reader][file]") {
       out << "sphere center=0,0,0 radius=1" << '\0' << std::string(1 << 20, 'x') << "\n";
     }
     CHECK_THROWS_WITH(glint::read_scene_file(path),
+                      StartsWith(path.string() + ":3001: error: line contains a NUL byte"));
+    CHECK_THROWS_WITH(glint::read_scene_file_text(path),
                       StartsWith(path.string() + ":3001: error: line contains a NUL byte"));
   }
   SECTION("/dev/zero is refused on its first line, not after a GiB") {

@@ -517,9 +517,12 @@ inline SceneDescription read_scene_text(std::string_view text, std::string sourc
   return detail::scene_reader::Parser(std::move(source), progress).parse(text);
 }
 
-/// Reads a scene file; errors name the path as given. A file that cannot be opened or read
-/// is a SceneError with line 0. `progress`, if set, follows the reading and the parsing.
-inline SceneDescription read_scene_file(const std::filesystem::path& path,
+/// The text of a scene file, for read_scene_text (read_scene_file is both): a program that
+/// reads the file once and parses it in several processes (glint-render-mpi). Refuses what
+/// read_scene_file refuses before parsing, with the same SceneError: a file that cannot be
+/// opened or read (line 0), one beyond kMaxSceneFileSize, a NUL byte (its line). `progress`, if
+/// set, follows the reading.
+inline std::string read_scene_file_text(const std::filesystem::path& path,
                                         const SceneReadCallback& progress = {}) {
   const std::string source = path.string();
   const auto fail = [&](const std::string& problem) { throw SceneError(source, 0, problem); };
@@ -565,7 +568,14 @@ inline SceneDescription read_scene_file(const std::filesystem::path& path,
       break;
     }
   }
-  return read_scene_text(text, source, progress);
+  return text;
+}
+
+/// Reads a scene file; errors name the path as given. A file that cannot be opened or read
+/// is a SceneError with line 0. `progress`, if set, follows the reading and the parsing.
+inline SceneDescription read_scene_file(const std::filesystem::path& path,
+                                        const SceneReadCallback& progress = {}) {
+  return read_scene_text(read_scene_file_text(path, progress), path.string(), progress);
 }
 
 }  // namespace glint

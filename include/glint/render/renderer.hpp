@@ -11,12 +11,16 @@
 // randomness comes from hashing (pixel, sample index, seed). So the image is the same bit for
 // bit whatever the thread count or scheduling. The hot loop has no locks, no allocation, no
 // virtual calls and no exceptions; threads meet only between passes.
+//
+// render_tiles is the same loop over work handed out by the caller (tile by tile, from any
+// schedule: glint-render-mpi's, across processes), for renders that are scheduled elsewhere.
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <climits>
 #include <cmath>
+#include <concepts>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -34,6 +38,7 @@
 #include "glint/render/camera.hpp"
 #include "glint/render/path_tracer.hpp"
 #include "glint/render/render_settings.hpp"
+#include "glint/render/tile_grid.hpp"
 #include "glint/render/work_estimate.hpp"
 #include "glint/scene/scene.hpp"
 
@@ -84,6 +89,28 @@ struct RenderControl {
   /// Checked before each pass, the first included: once true, the render returns the image of
   /// the passes completed so far. A lock-free atomic, so a signal handler may set it.
   const std::atomic<bool>* stop = nullptr;
+};
+
+/// Samples [first_sample, last_sample) of every pixel of tile `tile` (of TileGrid(settings)),
+/// to be added to the pixels' sums.
+struct TileWork {
+  std::size_t tile = 0;
+  int first_sample = 0;
+  int last_sample = 0;
+  std::uint64_t id = 0;  ///< the work source's own, given back to its finished() unchanged
+};
+
+/// Where Renderer::render_tiles's threads get their work. next() hands out the next piece, and
+/// may block until there is one; it returns nullopt once there is none left, to each thread in
+/// turn (the thread then ends). finished() says a piece is done: its sums are written. Both are
+/// called from every rendering thread at once, so they must be thread-safe, and they must not
+/// throw. For the image to be bit for bit a render's, a pixel's samples must be added in index
+/// order: a tile's samples [a, b) are handed out only after those before `a` have finished,
+/// into the sums they left.
+template <typename S>
+concept TileWorkSource = requires(S& source, const TileWork& work) {
+  { source.next() } -> std::same_as<std::optional<TileWork>>;
+  source.finished(work);
 };
 
 inline Film PassReport::image() const {
@@ -154,30 +181,19 @@ class Renderer {
     const PathTracer<C> tracer(scene, settings.max_depth);
 
     const TileGrid grid(settings);
-    const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    const int thread_count = static_cast<int>(
-        std::min<std::size_t>(settings.threads > 0 ? settings.threads : hardware, grid.count));
+    const int thread_count = threads_for(settings, grid.count);
     const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
 
-    Schedule schedule(grid.count, ends.size(), first_pass);
+    Schedule schedule(grid.count, ends, first_pass);
     std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
     {
       std::vector<std::jthread> workers;
-      workers.reserve(std::size_t(thread_count));
       // Declared after the workers so that it runs before they are joined: on any way out
       // (a callback that throws included) no worker is left waiting for a pass.
       const StopWorkersOnExit stop_workers{schedule};
-      for (int t = 0; t < thread_count; ++t) {
-        try {
-          workers.emplace_back([&, t] {
-            work(schedule, grid, ends, tracer, camera, settings, sums, counters[std::size_t(t)]);
-          });
-        } catch (const std::system_error& error) {
-          throw Error("cannot start " + std::to_string(thread_count) +
-                      " rendering threads (started " + std::to_string(t) +
-                      "): " + error.code().message() + "; ask for fewer threads");
-        }
-      }
+      start_threads(workers, thread_count, [&](int t) {
+        work(schedule, grid, tracer, camera, settings, sums, counters[std::size_t(t)]);
+      });
 
       const std::uint64_t samples_at_start = pixels * std::uint64_t(result.samples_per_pixel);
       const auto report = [&](bool last) {
@@ -223,6 +239,53 @@ class Renderer {
     return result;
   }
 
+  /// Renders the work `source` hands out on settings.threads threads (0: one per hardware thread;
+  /// never more than there are tiles), adding each piece's samples to `sums` (of the settings'
+  /// size), and returns once next() has returned nullopt to every thread. No thread asks for
+  /// work before all have started. A piece's pixels get exactly render()'s arithmetic, so
+  /// sums built piece by piece, in any order and by any number of calls (in other processes
+  /// too), are render()'s bit for bit as long as each pixel's samples come in index order.
+  /// The result counts what this call rendered: its samples, rays, invalid samples, threads
+  /// and time. Throws as render() does, before any work is asked for, and SettingsError for
+  /// sums of another size.
+  template <TileWorkSource Source>
+  static RenderStats render_tiles(const Scene& scene, const RenderSettings& settings,
+                                  PixelSums& sums, Source& source) {
+    validate(settings);
+    check_supported<C>(scene);
+    check_work<C>(scene, settings.max_depth);
+    if (sums.width() != settings.width || sums.height() != settings.height)
+      throw SettingsError("glint: sums of " + std::to_string(sums.width()) + "x" +
+                          std::to_string(sums.height()) + " pixels for an image of " +
+                          std::to_string(settings.width) + "x" + std::to_string(settings.height));
+    const auto start = std::chrono::steady_clock::now();
+    const Camera camera(scene.camera(), settings.width, settings.height);
+    const PathTracer<C> tracer(scene, settings.max_depth);
+    const TileGrid grid(settings);
+    const int thread_count = threads_for(settings, grid.count);
+    std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
+    {
+      std::vector<std::jthread> threads;
+      // Declared after the threads so that it runs before they are joined: threads started
+      // before one failed to start end without asking for work.
+      StartGate gate;
+      start_threads(threads, thread_count, [&](int t) {
+        if (gate.wait())
+          work(source, grid, tracer, camera, settings, sums, counters[std::size_t(t)]);
+      });
+      gate.open();
+    }
+    RenderStats stats;
+    for (const PaddedCounters& c : counters) {
+      stats.rays += c.counters.rays;
+      stats.invalid_samples += c.counters.invalid_samples;
+      stats.samples += c.samples.load(std::memory_order_relaxed);
+    }
+    stats.threads = thread_count;
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return stats;
+  }
+
   /// One pixel's estimate: the mean of its samples, summed in one go. Exposed for tests and
   /// benchmarks; render's passes give the same bits.
   static Color render_pixel(const PathTracer<C>& tracer, const Camera& camera,
@@ -263,26 +326,48 @@ class Renderer {
     return std::size_t(start.passes_done);
   }
 
-  /// Pixels [x0, x1) x [y0, y1).
-  struct Tile {
-    int x0, y0, x1, y1;
-  };
+  /// The threads a render with these settings uses for `tiles` tiles.
+  static int threads_for(const RenderSettings& settings, std::size_t tiles) {
+    const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    return static_cast<int>(
+        std::min<std::size_t>(settings.threads > 0 ? settings.threads : hardware, tiles));
+  }
 
-  /// The image cut into square tiles, numbered row by row.
-  struct TileGrid {
-    explicit TileGrid(const RenderSettings& settings)
-        : size(settings.tile_size),
-          width(settings.width),
-          height(settings.height),
-          columns((width + size - 1) / size),
-          count(std::size_t(columns) * std::size_t((height + size - 1) / size)) {}
-    Tile tile(std::size_t index) const {
-      const int x0 = int(index % std::size_t(columns)) * size;
-      const int y0 = int(index / std::size_t(columns)) * size;
-      return {x0, y0, std::min(x0 + size, width), std::min(y0 + size, height)};
+  /// Starts `count` threads running body(t) for t = 0, 1, ...; throws Error, saying how many
+  /// started, if one cannot be. Those already started are left to the caller's clean-up.
+  template <typename Body>
+  static void start_threads(std::vector<std::jthread>& threads, int count, const Body& body) {
+    threads.reserve(std::size_t(count));
+    for (int t = 0; t < count; ++t) {
+      try {
+        threads.emplace_back(body, t);
+      } catch (const std::system_error& error) {
+        throw Error("cannot start " + std::to_string(count) + " rendering threads (started " +
+                    std::to_string(t) + "): " + error.code().message() + "; ask for fewer threads");
+      }
     }
-    int size, width, height, columns;
-    std::size_t count;
+  }
+
+  /// Holds render_tiles's threads back until all have started; closed (the threads end at
+  /// once) if it is destroyed unopened, when one could not be started.
+  class StartGate {
+   public:
+    ~StartGate() { settle(kClosed); }
+    void open() { settle(kOpen); }
+    /// Whether the threads may go on.
+    bool wait() {
+      state_.wait(kWaiting, std::memory_order_acquire);
+      return state_.load(std::memory_order_acquire) == kOpen;
+    }
+
+   private:
+    static constexpr int kWaiting = 0, kOpen = 1, kClosed = 2;
+    void settle(int state) {
+      int waiting = kWaiting;
+      if (state_.compare_exchange_strong(waiting, state, std::memory_order_acq_rel))
+        state_.notify_all();
+    }
+    std::atomic<int> state_{kWaiting};
   };
 
   // Padded to a cache line so that threads never write to the same line. `samples` is written
@@ -298,17 +383,19 @@ class Renderer {
   /// is released when the one before has completed, because a tile's sums carry over.
   class Schedule {
    public:
-    /// Passes before `first_pass` count as done: their sums are already in the film.
-    Schedule(std::size_t tiles, std::size_t passes, std::size_t first_pass)
+    /// Passes before `first_pass` count as done: their sums are already in the film. `ends`
+    /// (pass_ends) outlives the schedule.
+    Schedule(std::size_t tiles, const std::vector<int>& ends, std::size_t first_pass)
         : tiles_(tiles),
-          items_(tiles * passes),
+          ends_(ends),
+          items_(tiles * ends.size()),
           next_item_(tiles * first_pass),
           items_done_(tiles * first_pass),
           released_(static_cast<long long>(first_pass)) {}
 
     /// The next item for a worker, once its pass is released; nullopt when there is nothing
     /// more to do (all items taken, or the render stopped).
-    std::optional<std::size_t> next() {
+    std::optional<TileWork> next() {
       const std::size_t item = next_item_.fetch_add(1, std::memory_order_relaxed);
       if (item >= items_) return std::nullopt;
       const auto pass = static_cast<long long>(item / tiles_);
@@ -318,13 +405,13 @@ class Renderer {
         if (released == kStopped) return std::nullopt;
         released_.wait(released, std::memory_order_acquire);
       }
-      return item;
+      const auto p = std::size_t(pass);
+      return TileWork{item % tiles_, p == 0 ? 0 : ends_[p - 1], ends_[p], item};
     }
-    std::size_t tiles() const { return tiles_; }
 
     /// A worker finished an item. Release: its sums are visible to whoever sees the count.
-    void finished(std::size_t item) {
-      const std::size_t pass_end = (item / tiles_ + 1) * tiles_;
+    void finished(const TileWork& work) {
+      const std::size_t pass_end = (work.id / tiles_ + 1) * tiles_;
       if (items_done_.fetch_add(1, std::memory_order_acq_rel) + 1 == pass_end) {
         // The lock, once per pass, keeps the caller from missing the wake-up between its
         // check and its wait.
@@ -353,6 +440,7 @@ class Renderer {
    private:
     static constexpr long long kStopped = LLONG_MIN;
     const std::size_t tiles_;
+    const std::vector<int>& ends_;
     const std::size_t items_;
     std::atomic<std::size_t> next_item_;
     std::atomic<std::size_t> items_done_;
@@ -366,16 +454,16 @@ class Renderer {
     ~StopWorkersOnExit() { schedule.stop(); }
   };
 
-  static void work(Schedule& schedule, const TileGrid& grid, const std::vector<int>& ends,
-                   const PathTracer<C>& tracer, const Camera& camera,
-                   const RenderSettings& settings, PixelSums& sums, PaddedCounters& mine) {
+  /// A rendering thread: the work of `source` until it has none left.
+  template <typename Source>
+  static void work(Source& source, const TileGrid& grid, const PathTracer<C>& tracer,
+                   const Camera& camera, const RenderSettings& settings, PixelSums& sums,
+                   PaddedCounters& mine) {
     std::uint64_t samples = 0;
-    for (std::optional<std::size_t> item = schedule.next(); item; item = schedule.next()) {
-      const std::size_t pass = *item / schedule.tiles();
-      const int first = pass == 0 ? 0 : ends[pass - 1];
-      render_tile(tracer, camera, settings, grid.tile(*item % schedule.tiles()), first, ends[pass],
-                  sums, mine, samples);
-      schedule.finished(*item);
+    for (std::optional<TileWork> piece = source.next(); piece; piece = source.next()) {
+      render_tile(tracer, camera, settings, grid.tile(piece->tile), piece->first_sample,
+                  piece->last_sample, sums, mine, samples);
+      source.finished(*piece);
     }
   }
 
