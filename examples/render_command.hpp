@@ -1,0 +1,701 @@
+#pragma once
+// What glint-render and glint-render-mpi share, so that both take the same options and keep the
+// same promises: the options, their parsing and the usage text; the checks of the outputs
+// before any rendering; outputs staged in temporaries that a second stop signal removes; the
+// stop signals; checkpoints (their key, the one resumed, the one written between passes) and
+// the time limit; and the end of a run: the files written together, the summary line, the
+// warnings and the exit status. Each program includes it once (one translation unit each).
+
+#include <pthread.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "glint/glint.hpp"
+#include "glint/io/checkpoint.hpp"
+#include "load_progress.hpp"
+#include "progress_printer.hpp"
+
+// GLINT_HAVE_EXR: the program links glint::exr (examples/CMakeLists.txt, when OpenEXR is found).
+#ifdef GLINT_HAVE_EXR
+#include "glint/exr/exr_image.hpp"
+#endif
+
+// GLINT_VARIANT names the type of glint::variants the program renders with (e.g.
+// -DGLINT_VARIANT=report), chosen when it is compiled.
+#ifndef GLINT_VARIANT
+#define GLINT_VARIANT default_variant
+#endif
+
+namespace glint::cli {
+
+using Variant = glint::variants::GLINT_VARIANT;
+static_assert(glint::NamedVariant<Variant>, "GLINT_VARIANT must name a variant of variants.hpp");
+
+/// What tells the programs apart in their messages and their usage text.
+struct Program {
+  const char* name;                ///< "glint-render": the prefix of every message
+  std::string_view usage_line;     ///< "usage: glint-render SCENE [options]"
+  std::string_view description;    ///< the paragraph after it
+  std::string_view threads_help;   ///< the --threads lines of the options
+  std::string_view extra_options;  ///< the program's own options, before --quiet
+  std::string_view notes;          ///< what follows the options: passes, signals, exit status
+  std::string_view variant;        ///< the renderer variant's name
+};
+
+constexpr std::string_view kOptionsBeforeThreads = R"(options:
+  -o, --output FILE   8-bit sRGB PNG to write, FILE ending in .png (default: SCENE's name
+                      with .png, in the current directory)
+  --hdr FILE          also write linear radiance as a PFM (portable float map), FILE ending
+                      in .pfm
+  --tonemap OP        how the PNG shows radiance above 1: clip (default), reinhard or aces;
+                      the PFM keeps the linear radiance
+  --exposure EV       scale the radiance by 2^EV before tone mapping the PNG (default 0)
+  --exr FILE          also write linear radiance as an OpenEXR image, 32-bit float RGB with
+                      the render settings in its header, FILE ending in .exr (in a build
+                      with OpenEXR, Debian's libopenexr-dev)
+  --exr-half          write the EXR in 16-bit half floats: half the size, 11 significant
+                      bits; radiance above 65504, the largest half, is written as 65504
+  --spp N             samples per pixel (overrides the scene's image spp)
+  --max-depth N       most bounces after the camera ray; 0 = direct light only
+  --width W           image width in pixels (overrides the scene)
+  --height H          image height in pixels (overrides the scene)
+)";
+
+constexpr std::string_view kOptionsAfterThreads =
+    R"(  --seed N            random seed (default 0): same scene, settings and seed give the
+                      same image bit for bit
+  --checkpoint FILE   save what --resume needs to continue the render to FILE: after a
+                      pass, every --checkpoint-interval seconds, and at the end (finished,
+                      stopped by a signal or by --time-limit)
+  --checkpoint-interval SECONDS
+                      least time between two checkpoints while rendering (default 60;
+                      0: after every pass)
+  --resume FILE       continue the render saved in FILE (same scene file, variant and
+                      image options, seed included): the image is then exactly the one
+                      an uninterrupted render gives; a checkpoint of another render is
+                      refused (status 1) before any rendering
+  --time-limit SECONDS
+                      stop after the pass that ends past SECONDS of rendering and write
+                      the image of the passes done (status 0, saying what it holds)
+)";
+
+constexpr std::string_view kOptionsLast = R"(  --quiet             no progress or summary on stderr
+  -h, --help          this help
+)";
+
+inline std::string usage(const Program& program) {
+  std::string text;
+  for (const std::string_view part :
+       {program.usage_line, std::string_view("\n\n"), program.description, std::string_view("\n\n"),
+        kOptionsBeforeThreads, program.threads_help, kOptionsAfterThreads, program.extra_options,
+        kOptionsLast, std::string_view("\n"), program.notes})
+    text += part;
+  return text;
+}
+
+struct Options {
+  std::string scene;
+  std::optional<std::string> output;
+  std::optional<std::string> hdr;
+  glint::ToneMapping tone_mapping;
+  std::optional<std::string> exr;
+  bool exr_half = false;
+  std::optional<int> spp, max_depth, width, height, threads;
+  std::uint64_t seed = 0;
+  std::optional<std::string> checkpoint, resume;
+  double checkpoint_interval = 60.0;
+  std::optional<double> time_limit;
+  bool quiet = false;
+  bool help = false;  ///< -h or --help: nothing after it was read
+};
+
+/// A bad command line: status 2, the message followed by the usage.
+struct UsageError {
+  std::string message;
+};
+
+template <typename Int>
+Int parse_integer(std::string_view option, std::string_view text, Int low, Int high) {
+  Int value{};
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || value < low || value > high)
+    throw UsageError{std::string(option) + " expects an integer in [" + std::to_string(low) + ", " +
+                     std::to_string(high) + "], got '" + std::string(text) + "'"};
+  return value;
+}
+
+/// A number of seconds: a decimal number from 0 to about 30 years.
+inline double parse_seconds(std::string_view option, std::string_view text) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !(value >= 0.0) || value > 1e9)
+    throw UsageError{std::string(option) + " expects seconds from 0 to 1e9, got '" +
+                     std::string(text) + "'"};
+  return value;
+}
+
+/// A number of stops: a decimal number within +-glint::limits::max_exposure.
+inline float parse_exposure(std::string_view option, std::string_view text) {
+  float value = 0.0f;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() ||
+      !(std::abs(value) <= glint::limits::max_exposure))
+    throw UsageError{std::string(option) + " expects stops from -" +
+                     std::to_string(int(glint::limits::max_exposure)) + " to " +
+                     std::to_string(int(glint::limits::max_exposure)) + ", got '" +
+                     std::string(text) + "'"};
+  return value;
+}
+
+inline glint::ToneMapOperator parse_tone_map(std::string_view option, std::string_view text) {
+  if (const auto op = glint::parse_tone_map_operator(text)) return *op;
+  throw UsageError{std::string(option) + " expects " + glint::tone_map_operator_list() + ", got '" +
+                   std::string(text) + "'"};
+}
+
+/// Output formats follow the file name, and only these exist: a picture written under
+/// another name (a PNG called out.jpg) would mislead every program that opens it.
+inline std::string image_path(std::string_view option, std::string_view path,
+                              std::string_view format, std::string_view extension) {
+  const auto has_extension = [&] {
+    if (path.size() <= extension.size()) return false;
+    const std::string_view tail = path.substr(path.size() - extension.size());
+    for (std::size_t i = 0; i < tail.size(); ++i)
+      if (std::tolower(static_cast<unsigned char>(tail[i])) != extension[i]) return false;
+    return true;
+  };
+  if (!has_extension())
+    throw UsageError{std::string(option) + " writes " + std::string(format) +
+                     ": the file name must end in " + std::string(extension) + ", got '" +
+                     std::string(path) + "'"};
+  return std::string(path);
+}
+
+/// A program's own option: given the argument and a way to take its value, says whether it
+/// was one (and took it), or throws UsageError.
+using ExtraOption =
+    std::function<bool(std::string_view arg, const std::function<std::string_view()>& value)>;
+
+inline Options parse_options(int argc, char** argv, [[maybe_unused]] const Program& program,
+                             const ExtraOption& extra = {}) {
+  Options options;
+  std::vector<std::string_view> args(argv + 1, argv + argc);
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string_view arg = args[i];
+    const std::function<std::string_view()> value = [&]() -> std::string_view {
+      if (i + 1 >= args.size()) throw UsageError{std::string(arg) + " needs a value"};
+      return args[++i];
+    };
+    if (arg == "-h" || arg == "--help") {
+      options.help = true;
+      return options;
+    } else if (arg == "-o" || arg == "--output") {
+      options.output = image_path(arg, value(), "an 8-bit sRGB PNG", ".png");
+    } else if (arg == "--hdr") {
+      options.hdr = image_path(arg, value(), "a linear float PFM", ".pfm");
+    } else if (arg == "--tonemap") {
+      options.tone_mapping.op = parse_tone_map(arg, value());
+    } else if (arg == "--exposure") {
+      options.tone_mapping.exposure = parse_exposure(arg, value());
+    } else if (arg == "--exr") {
+      options.exr = image_path(arg, value(), "an OpenEXR image", ".exr");
+#ifndef GLINT_HAVE_EXR
+      throw UsageError{"this " + std::string(program.name) +
+                       " was built without OpenEXR (Debian: libopenexr-dev); "
+                       "--exr is not available: install it (scripts/install-deps --exr) and "
+                       "build glint again"};
+#endif
+    } else if (arg == "--exr-half") {
+      options.exr_half = true;
+    } else if (arg == "--spp") {
+      options.spp = parse_integer(arg, value(), 1, glint::limits::max_samples_per_pixel);
+    } else if (arg == "--max-depth") {
+      options.max_depth = parse_integer(arg, value(), 0, glint::limits::max_depth);
+    } else if (arg == "--width") {
+      options.width = parse_integer(arg, value(), 1, glint::limits::max_image_side);
+    } else if (arg == "--height") {
+      options.height = parse_integer(arg, value(), 1, glint::limits::max_image_side);
+    } else if (arg == "--threads") {
+      options.threads = parse_integer(arg, value(), 1, glint::limits::max_threads);
+    } else if (arg == "--seed") {
+      options.seed = parse_integer<std::uint64_t>(arg, value(), 0, UINT64_MAX);
+    } else if (arg == "--checkpoint") {
+      options.checkpoint = std::string(value());
+    } else if (arg == "--checkpoint-interval") {
+      options.checkpoint_interval = parse_seconds(arg, value());
+    } else if (arg == "--resume") {
+      options.resume = std::string(value());
+    } else if (arg == "--time-limit") {
+      options.time_limit = parse_seconds(arg, value());
+    } else if (arg == "--quiet" || arg == "-q") {
+      options.quiet = true;
+    } else if (extra && extra(arg, value)) {
+      continue;
+    } else if (arg.size() > 1 && arg[0] == '-') {
+      throw UsageError{"unknown option '" + std::string(arg) + "'"};
+    } else if (options.scene.empty()) {
+      options.scene = std::string(arg);
+    } else {
+      throw UsageError{"more than one scene given ('" + options.scene + "' and '" +
+                       std::string(arg) + "')"};
+    }
+  }
+  if (options.scene.empty()) throw UsageError{"no scene file given"};
+  if (options.exr_half && !options.exr) throw UsageError{"--exr-half needs --exr FILE"};
+  // Checked before the scene is read, which can take long: the scene cannot change this.
+  if (options.width && options.height &&
+      std::int64_t{*options.width} * *options.height > glint::limits::max_image_pixels)
+    throw UsageError{"--width " + std::to_string(*options.width) + " --height " +
+                     std::to_string(*options.height) + " exceeds " +
+                     std::to_string(glint::limits::max_image_pixels) + " pixels"};
+  return options;
+}
+
+/// What --help prints on stdout.
+inline std::string help_text(const Program& program) {
+  return usage(program) + "\nvariant: " + std::string(program.variant) + "\n";
+}
+
+// --- Stop signals -------------------------------------------------------------------------
+// The first stop signal stops after the current pass and writes the image of the passes done;
+// a second one exits at once. What the handler shares with the program: only lock-free atomics
+// and fixed buffers, written with the signals blocked, so that the handler reads them whole.
+
+static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free);
+inline std::atomic<bool> stop_requested{false};
+inline std::atomic<int> stop_signal{0};    ///< the first stop signal received, or 0
+inline constexpr int kMaxTemporaries = 4;  // the PNG, the PFM, the EXR and the checkpoint
+inline char temporaries[kMaxTemporaries][PATH_MAX];
+inline std::atomic<int> temporary_count{0};
+inline constexpr int kMaxStopSignals = 4;
+inline int stop_signals[kMaxStopSignals];
+inline int stop_signal_count = 0;
+inline char second_signal_message[128];
+inline std::size_t second_signal_message_size = 0;
+
+extern "C" inline void on_stop_signal(int signal) {
+  // Async-signal-safe only: atomics, unlink, write and _exit.
+  if (stop_signal.exchange(signal) != 0) {
+    for (int i = 0, n = temporary_count.load(); i < n; ++i)
+      unlink(temporaries[i]);
+    [[maybe_unused]] const ssize_t written =
+        write(STDERR_FILENO, second_signal_message, second_signal_message_size);
+    _exit(128 + signal);
+  }
+  stop_requested.store(true);
+}
+
+inline const char* signal_name(int signal) {
+  switch (signal) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGHUP:
+      return "SIGHUP";
+    case SIGUSR1:
+      return "SIGUSR1";
+    default:
+      return "a signal";
+  }
+}
+
+/// Makes `signals` (at most kMaxStopSignals) stop the render; `program` names the message of
+/// a second one.
+inline void install_signal_handlers(const char* program, std::span<const int> signals) {
+  std::snprintf(second_signal_message, sizeof second_signal_message,
+                "\n%s: a second stop signal: exiting at once\n", program);
+  second_signal_message_size = std::strlen(second_signal_message);
+  stop_signal_count = 0;
+  for (const int signal : signals.first(std::min<std::size_t>(signals.size(), kMaxStopSignals)))
+    stop_signals[stop_signal_count++] = signal;
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  action.sa_flags = SA_RESTART;
+  sigemptyset(&action.sa_mask);
+  for (int i = 0; i < stop_signal_count; ++i) {
+    // A signal ignored on entry stays ignored: nohup and background jobs rely on it.
+    struct sigaction previous {};
+    if (sigaction(stop_signals[i], nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN)
+      continue;
+    sigaction(stop_signals[i], &action, nullptr);
+  }
+  // Past `ulimit -f`, write() then fails with EFBIG and the temporary is removed; by default
+  // the signal would kill the process and leave the temporary behind.
+  std::signal(SIGXFSZ, SIG_IGN);
+}
+
+/// Holds the stop signals back for its lifetime, so that a second signal's handler never sees
+/// the list of temporaries half-updated or a set of outputs half-renamed.
+class BlockStopSignals {
+ public:
+  BlockStopSignals() {
+    sigset_t signals;
+    sigemptyset(&signals);
+    for (int i = 0; i < stop_signal_count; ++i)
+      sigaddset(&signals, stop_signals[i]);
+    pthread_sigmask(SIG_BLOCK, &signals, &previous_);
+  }
+  ~BlockStopSignals() { pthread_sigmask(SIG_SETMASK, &previous_, nullptr); }
+  BlockStopSignals(const BlockStopSignals&) = delete;
+  BlockStopSignals& operator=(const BlockStopSignals&) = delete;
+
+ private:
+  sigset_t previous_;
+};
+
+/// Forgets the temporaries the handler would remove, when the files themselves are gone or
+/// renamed (declared before them, it runs after their removal).
+struct ForgetTemporaries {
+  ~ForgetTemporaries() {
+    const BlockStopSignals block;
+    temporary_count.store(0);
+  }
+};
+
+// --- Outputs ------------------------------------------------------------------------------
+
+/// Refuses, before any rendering, an output that cannot be written or would destroy the scene.
+inline void check_output(const std::string& output, const std::string& scene) {
+  glint::check_output_path(output);
+  std::error_code error;
+  if (std::filesystem::equivalent(output, scene, error))
+    throw glint::ImageWriteError("cannot write " + output + ": it is the scene file " + scene);
+}
+
+/// Checks every output of the run before any rendering (throws ImageWriteError) and returns the
+/// PNG's path.
+inline std::string check_outputs(const Options& options) {
+  const std::string output = options.output
+                                 ? *options.output
+                                 : std::filesystem::path(options.scene).stem().string() + ".png";
+  check_output(output, options.scene);
+  if (options.hdr) check_output(*options.hdr, options.scene);
+  if (options.exr) check_output(*options.exr, options.scene);
+  if (options.checkpoint) {
+    check_output(*options.checkpoint, options.scene);
+    // The files are renamed into place together: one would silently replace the other.
+    const auto resolved = [](const std::string& path) {
+      return std::filesystem::weakly_canonical(std::filesystem::absolute(path));
+    };
+    for (const std::optional<std::string>& image :
+         {std::optional(output), options.hdr, options.exr})
+      if (image && resolved(*image) == resolved(*options.checkpoint))
+        throw glint::ImageWriteError("cannot write the checkpoint " + *options.checkpoint +
+                                     ": it is also the image " + *image);
+  }
+  return output;
+}
+
+/// Writes every file to a new temporary file, then renames them all into place only when all
+/// were written; on any failure, or a second signal, no temporary is left.
+inline void write_staged(const std::vector<glint::FileContents>& files) {
+  const ForgetTemporaries forget;
+  std::vector<glint::StagedFile> staged;
+  staged.reserve(files.size());
+  {
+    const BlockStopSignals block;
+    for (const glint::FileContents& file : files) {
+      staged.emplace_back(file.path);
+      const std::string& name = staged.back().temporary().native();
+      if (name.size() >= PATH_MAX)
+        throw glint::ImageWriteError("cannot write " + file.path.string() + ": path too long");
+      std::memcpy(temporaries[temporary_count.load()], name.c_str(), name.size() + 1);
+      temporary_count.fetch_add(1);
+    }
+  }
+  for (std::size_t i = 0; i < files.size(); ++i)
+    staged[i].write(files[i].bytes);
+  const BlockStopSignals block;
+  for (glint::StagedFile& file : staged)
+    file.commit();
+}
+
+// --- The scene and the settings -----------------------------------------------------------
+
+/// The hash of the scene file's bytes that a checkpoint records: the scene as written, so that
+/// any edit, even one that renders the same, makes a checkpoint another scene's. The same as
+/// glint::fnv1a of the file's text (FNV-1a runs byte by byte).
+inline std::uint64_t scene_file_hash(const std::string& path) {
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                             &std::fclose);
+  if (!file) throw glint::Error("cannot read " + path + ": " + std::strerror(errno));
+  std::uint64_t hash = glint::fnv1a(nullptr, 0);
+  std::vector<char> buffer(1 << 16);
+  for (std::size_t read; (read = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0;)
+    hash = glint::fnv1a(buffer.data(), read, hash);
+  if (std::ferror(file.get())) throw glint::Error("cannot read " + path);
+  return hash;
+}
+
+/// Parses the scene's text, read from `source`, and builds it, with its loading reported.
+inline glint::Scene parse_and_build(LoadProgress& loading, std::string_view text,
+                                    const std::string& source) {
+  const glint::SceneDescription description =
+      glint::read_scene_text(text, source, loading.reader_callback());
+  loading.building(description.spheres.size());
+  glint::Scene built = glint::Scene::build(description);
+  loading.finished(built.sphere_count());
+  return built;
+}
+
+/// The scene's settings with the options' overrides; throws UsageError when they do not fit
+/// together (the scene's own settings were checked when it was read: what fails is an option).
+inline glint::RenderSettings render_settings(const Options& options, const glint::Scene& scene) {
+  glint::RenderSettings settings = glint::RenderSettings::from(scene);
+  if (options.spp) settings.samples_per_pixel = *options.spp;
+  if (options.max_depth) settings.max_depth = *options.max_depth;
+  if (options.width) settings.width = *options.width;
+  if (options.height) settings.height = *options.height;
+  if (options.threads) settings.threads = *options.threads;
+  settings.seed = options.seed;
+  if (const std::string problem = glint::image_settings_problem(settings); !problem.empty())
+    throw UsageError{"the options with " + options.scene + "'s image settings: " + problem};
+  return settings;
+}
+
+// --- Checkpoints and the passes -----------------------------------------------------------
+
+/// The checkpoints of a run: the key its checkpoints carry, the checkpoint it resumes, and, kept
+/// by the pass callback, the state of the last completed pass for the checkpoint written at the
+/// end (whatever stops the render after it). Between passes it writes a checkpoint every
+/// --checkpoint-interval seconds and applies --time-limit.
+class PassKeeper {
+ public:
+  /// `scene_hash()` gives the hash of the scene file's bytes; called only when a checkpoint is
+  /// written or resumed. Throws CheckpointError for a checkpoint that cannot be resumed.
+  template <typename SceneHash>
+  PassKeeper(const Program& program, const Options& options, const glint::RenderSettings& settings,
+             const SceneHash& scene_hash)
+      : program_(program), options_(options) {
+    if (options.checkpoint || options.resume)
+      key_ = glint::CheckpointKey::of(scene_hash(), program.variant, settings);
+    if (options.resume) {
+      resumed_ = glint::read_checkpoint(*options.resume);
+      glint::check_checkpoint_matches(*resumed_, key_, *options.resume);
+      last_sums_ = resumed_->sums;
+      last_passes_ = resumed_->passes_done;
+      last_spp_ = resumed_->samples_per_pixel_done;
+    }
+  }
+  PassKeeper(const PassKeeper&) = delete;
+  PassKeeper& operator=(const PassKeeper&) = delete;
+
+  /// Where the render begins: after the resumed checkpoint's passes, or at the start.
+  glint::RenderStart start() const {
+    return resumed_ ? glint::RenderStart{&resumed_->sums, resumed_->passes_done}
+                    : glint::RenderStart{};
+  }
+
+  /// The pass callback: false stops the render after this pass.
+  bool pass_done(const glint::PassReport& pass) {
+    if (options_.checkpoint) {
+      last_sums_ = pass.sums;
+      last_passes_ = pass.passes_done;
+      last_spp_ = pass.samples_per_pixel;
+    }
+    const bool last = pass.passes_done == pass.pass_count;
+    if (options_.time_limit && pass.elapsed_seconds >= *options_.time_limit && !last) {
+      time_is_up_ = true;
+      return false;
+    }
+    // The last pass's checkpoint is written with the images.
+    if (options_.checkpoint && !last &&
+        pass.elapsed_seconds - last_checkpoint_ >= options_.checkpoint_interval) {
+      try {
+        write_staged(
+            {{*options_.checkpoint, glint::encode_checkpoint(key_, pass.passes_done,
+                                                             pass.samples_per_pixel, pass.sums)}});
+      } catch (const glint::ImageWriteError& error) {
+        // Hours of rendering are worth more than one checkpoint: the next one may succeed.
+        std::fprintf(stderr, "\n%s: warning: no checkpoint: %s\n", program_.name, error.what());
+      }
+      last_checkpoint_ = pass.elapsed_seconds;
+    }
+    return true;
+  }
+  glint::PassCallback callback() {
+    return [this](const glint::PassReport& pass) { return pass_done(pass); };
+  }
+
+  bool time_is_up() const { return time_is_up_; }
+  /// The checkpoint's bytes after the last completed pass.
+  std::vector<char> final_checkpoint() const {
+    return glint::encode_checkpoint(key_, last_passes_, last_spp_, last_sums_);
+  }
+
+ private:
+  const Program& program_;
+  const Options& options_;
+  glint::CheckpointKey key_;
+  std::optional<glint::Checkpoint> resumed_;
+  glint::PixelSums last_sums_;
+  int last_passes_ = 0, last_spp_ = 0;
+  bool time_is_up_ = false;
+  double last_checkpoint_ = 0.0;
+};
+
+// --- The end of a run ---------------------------------------------------------------------
+
+#ifdef GLINT_HAVE_EXR
+/// The render, in the EXR header: a typed attribute per setting ("glint/..."; the seed as its
+/// decimal string, EXR having no 64-bit integers), and a line in the standard "comments"
+/// attribute that any EXR viewer shows. The scene is named as it was given.
+inline std::vector<glint::ExrAttribute> exr_attributes(const Program& program,
+                                                       const Options& options,
+                                                       const glint::RenderSettings& settings,
+                                                       const glint::RenderResult& result) {
+  const std::string seed = std::to_string(settings.seed);
+  const std::string comments =
+      std::string(program.name) + " " GLINT_VERSION " (" + std::string(program.variant) +
+      "): " + options.scene + ", " + std::to_string(result.samples_per_pixel) + " of " +
+      std::to_string(settings.samples_per_pixel) + " samples per pixel, max depth " +
+      std::to_string(settings.max_depth) + ", seed " + seed;
+  return {{"comments", comments},
+          {"glint/version", std::string(GLINT_VERSION)},
+          {"glint/variant", std::string(program.variant)},
+          {"glint/scene", options.scene},
+          {"glint/width", settings.width},
+          {"glint/height", settings.height},
+          {"glint/samplesPerPixel", result.samples_per_pixel},
+          {"glint/samplesPerPixelRequested", settings.samples_per_pixel},
+          {"glint/maxDepth", settings.max_depth},
+          {"glint/antialiasSigma", settings.antialias_sigma},
+          {"glint/seed", seed},
+          {"glint/threads", result.stats.threads},
+          {"glint/renderSeconds", result.stats.seconds}};
+}
+#endif
+
+/// How the run is reported at its end, besides the result.
+struct RunReport {
+  /// Who rendered, for the summary line: "2 threads", "3 ranks x 2 threads".
+  std::string workers;
+  /// Lines printed after the summary line (unless --quiet), each ending in a newline.
+  std::string after_summary;
+};
+
+/// Writes the run's files (the images and the checkpoint, together or none) and says how it
+/// ended: the summary line, warnings, what a stop left. Returns the exit status. Throws
+/// ImageWriteError when a file cannot be written.
+inline int finish_run(const Program& program, const Options& options, const std::string& output,
+                      const glint::RenderSettings& settings, const glint::RenderResult& result,
+                      const PassKeeper& keeper, const RunReport& report) {
+  const char* name = program.name;
+  const int signal = stop_signal.load();
+  if (result.samples_per_pixel == 0) {
+    std::fprintf(stderr, "%s: stopped by %s before a pass completed: nothing written\n", name,
+                 signal_name(signal));
+    return 128 + signal;
+  }
+  std::vector<glint::FileContents> files{
+      {output, glint::encode_png(result.film, options.tone_mapping)}};
+  if (options.hdr) files.push_back({*options.hdr, glint::encode_pfm(result.film)});
+#ifdef GLINT_HAVE_EXR
+  std::size_t clamped_halves = 0;
+  if (options.exr) {
+    glint::ExrEncoded exr = glint::encode_exr(
+        result.film,
+        {options.exr_half ? glint::ExrPixelType::float16 : glint::ExrPixelType::float32,
+         exr_attributes(program, options, settings, result)});
+    clamped_halves = exr.clamped_values;
+    files.push_back({*options.exr, std::move(exr.bytes)});
+  }
+#endif
+  if (options.checkpoint) files.push_back({*options.checkpoint, keeper.final_checkpoint()});
+  write_staged(files);
+
+  if (!options.quiet) {
+    const glint::RenderStats& stats = result.stats;
+    std::fprintf(stderr,
+                 "%s (%s): %s -> %s: %dx%d, %d spp, depth %d in %.2f s on %s: "
+                 "%.3g samples, %.1f Mrays/s\n",
+                 name, std::string(program.variant).c_str(), options.scene.c_str(), output.c_str(),
+                 settings.width, settings.height, result.samples_per_pixel, settings.max_depth,
+                 stats.seconds, report.workers.c_str(), double(stats.samples),
+                 double(stats.rays) / stats.seconds * 1e-6);
+    std::fputs(report.after_summary.c_str(), stderr);
+  }
+  if (result.stats.invalid_samples > 0)
+    std::fprintf(stderr, "%s: warning: %llu samples were NaN or infinite and dropped\n", name,
+                 static_cast<unsigned long long>(result.stats.invalid_samples));
+  if (result.stats.clamped_pixels > 0)
+    std::fprintf(stderr,
+                 "%s: warning: %llu pixels have a mean beyond the float range and were "
+                 "written as the largest float (%g)\n",
+                 name, static_cast<unsigned long long>(result.stats.clamped_pixels),
+                 double(std::numeric_limits<float>::max()));
+#ifdef GLINT_HAVE_EXR
+  if (clamped_halves > 0)
+    std::fprintf(stderr,
+                 "%s: warning: %zu channel values beyond the largest half were "
+                 "written to %s as %g\n",
+                 name, clamped_halves, options.exr->c_str(), double(glint::kExrLargestHalf));
+#endif
+  if (options.checkpoint && !result.complete())
+    std::fprintf(stderr, "%s: %s holds the render so far: continue it with --resume %s\n", name,
+                 options.checkpoint->c_str(), options.checkpoint->c_str());
+  if (signal != 0) {
+    std::fprintf(stderr,
+                 "%s: stopped by %s: %s holds %d of %d samples per pixel (%d of %d "
+                 "passes)\n",
+                 name, signal_name(signal), output.c_str(), result.samples_per_pixel,
+                 settings.samples_per_pixel, result.passes_done, result.pass_count);
+    return 128 + signal;
+  }
+  if (keeper.time_is_up())
+    std::fprintf(stderr,
+                 "%s: time limit of %g s reached: %s holds %d of %d samples per pixel "
+                 "(%d of %d passes)\n",
+                 name, *options.time_limit, output.c_str(), result.samples_per_pixel,
+                 settings.samples_per_pixel, result.passes_done, result.pass_count);
+  return 0;
+}
+
+/// A run that failed: its exit status and what to print on stderr (ending in a newline).
+struct Failure {
+  int status = 1;
+  std::string message;
+};
+
+/// The failure of the exception being handled (call it in a catch block): 2 with the usage for
+/// a bad option, 3 for a scene this variant cannot render, 1 for a bad scene (its message is
+/// already "FILE:LINE: error: PROBLEM") or any other error.
+inline Failure current_failure(const Program& program) {
+  try {
+    throw;
+  } catch (const UsageError& error) {
+    return {2, std::string(program.name) + ": " + error.message + "\n\n" + usage(program)};
+  } catch (const glint::UnsupportedSceneError& error) {
+    return {3, std::string(error.what()) + "\n"};
+  } catch (const glint::SceneError& error) {
+    return {1, std::string(error.what()) + "\n"};
+  } catch (const std::exception& error) {
+    return {1, std::string(program.name) + ": error: " + error.what() + "\n"};
+  } catch (...) {
+    return {1, std::string(program.name) + ": error: an unknown exception\n"};
+  }
+}
+
+}  // namespace glint::cli
