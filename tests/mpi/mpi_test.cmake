@@ -1,0 +1,33 @@
+# glint-render-mpi under mpirun (label `mpi`), where MPI was found and glint-render-mpi built:
+# the bytes of glint-render's image for 1, 2 and 3 ranks, checkpoints resumed across the two
+# programs, a scene error printed once, a bad option, a rank killed mid-render, and a stop by a
+# signal (tests/mpi/mpi_render_test.bash). Ranks outnumber the cores with --oversubscribe; CI
+# runs as root, which Open MPI refuses unless told otherwise.
+if(NOT TARGET glint-render-mpi OR NOT MPIEXEC_EXECUTABLE)
+  return()
+endif()
+find_program(GLINT_BASH bash)
+if(NOT GLINT_BASH)
+  return()
+endif()
+
+# glint_mpi_test(NAME CASE [ARGS...]): the script's case CASE with ARGS.
+function(glint_mpi_test name case)
+  add_test(NAME "mpi: ${name}"
+           COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/mpi_render_test.bash ${case}
+                   ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:glint-render-mpi>
+                   $<TARGET_FILE:glint-render> ${PROJECT_SOURCE_DIR}
+                   ${PROJECT_BINARY_DIR}/mpi-test/${name} ${ARGN})
+  set_tests_properties("mpi: ${name}" PROPERTIES LABELS mpi TIMEOUT 120
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
+endfunction()
+
+glint_mpi_test(same-bytes-1-rank same_bytes 1 2)
+glint_mpi_test(same-bytes-2-ranks same_bytes 2 1)
+glint_mpi_test(same-bytes-3-ranks same_bytes 3 2)
+glint_mpi_test(resume-across-programs resume_across)
+glint_mpi_test(scene-error scene_error)
+glint_mpi_test(bad-option bad_option)
+glint_mpi_test(killed-rank killed_rank)
+glint_mpi_test(sigusr1 stopped USR1 138)
+glint_mpi_test(sigterm stopped TERM any)
