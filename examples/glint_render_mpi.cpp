@@ -304,18 +304,35 @@ int cpus_available() {
   return std::max(1, int(std::thread::hardware_concurrency()));
 }
 
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// How long the scene took to reach every rank, as rank 0 saw it, in seconds from the start.
+struct LoadTimes {
+  std::uint64_t bytes = 0;
+  double read = 0.0;   ///< rank 0 had read the file
+  double sent = 0.0;   ///< every rank had the text (broadcast, or each read it)
+  double built = 0.0;  ///< rank 0 had parsed and built the scene
+  double ready = 0.0;  ///< every rank had
+};
+
 /// The text of the scene on every rank: read by rank 0 and broadcast, or read by each.
 /// Throws SceneError on the ranks that cannot read it, and on the others when rank 0 cannot.
 std::string scene_text(const World& world, const cli::Options& options, const MpiOptions& mpi,
-                       cli::LoadProgress& loading) {
-  if (mpi.scene_everywhere)
-    return glint::read_scene_file_text(options.scene, loading.reader_callback());
+                       cli::LoadProgress& loading, Clock::time_point start, LoadTimes& times) {
+  if (mpi.scene_everywhere) {
+    std::string text = glint::read_scene_file_text(options.scene, loading.reader_callback());
+    times.read = seconds_since(start);
+    return text;
+  }
   std::string text;
   std::uint64_t size = UINT64_MAX;  // rank 0 could not read it
   std::exception_ptr failure;
   if (world.rank == 0) try {
       text = glint::read_scene_file_text(options.scene, loading.reader_callback());
       size = text.size();
+      times.read = seconds_since(start);
     } catch (...) {
       failure = std::current_exception();
     }
@@ -765,6 +782,17 @@ class Coordinator {
   std::vector<RankReport> reports_;
 };
 
+/// --verbose's line on the scene's way to the ranks.
+std::string load_line(const LoadTimes& t, const MpiOptions& mpi) {
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "%s: scene: %s, read by rank 0 after %.3f s, on every rank (%s) after %.3f s; "
+                "parsed and built by rank 0 after %.3f s, by every rank after %.3f s\n",
+                kProgram.name, megabytes(t.bytes).c_str(), t.read,
+                mpi.scene_everywhere ? "each read it" : "broadcast", t.sent, t.built, t.ready);
+  return line;
+}
+
 int run(const World& world, int argc, char** argv) {
   cli::Options options;
   MpiOptions mpi;
@@ -795,14 +823,19 @@ int run(const World& world, int argc, char** argv) {
 
   std::optional<glint::Scene> scene;
   glint::RenderSettings settings;
-  std::uint64_t scene_hash = 0;
+  std::uint64_t scene_hash = 0;  // of the file's bytes, for checkpoints and --scene-everywhere
+  LoadTimes times;
   {
+    const Clock::time_point start = Clock::now();
     cli::LoadProgress loading(speak, options.scene);
     std::string text;
-    if (int status =
-            agree(world, attempt([&] { text = scene_text(world, options, mpi, loading); })))
+    if (int status = agree(
+            world, attempt([&] { text = scene_text(world, options, mpi, loading, start, times); })))
       return status;
-    scene_hash = glint::fnv1a(text.data(), text.size());
+    times.sent = seconds_since(start);
+    times.bytes = text.size();
+    if (mpi.scene_everywhere || (world.rank == 0 && (options.checkpoint || options.resume)))
+      scene_hash = glint::fnv1a(text.data(), text.size());
     std::uint64_t rank0_hash = scene_hash;
     if (mpi.scene_everywhere) MPI_Bcast(&rank0_hash, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
     if (int status = agree(world, attempt([&] {
@@ -810,6 +843,7 @@ int run(const World& world, int argc, char** argv) {
                                throw glint::Error("cannot render " + options.scene +
                                                   ": its bytes here differ from rank 0's");
                              scene.emplace(cli::parse_and_build(loading, text, options.scene));
+                             times.built = seconds_since(start);
                              glint::check_supported<Variant>(*scene);
                              settings = cli::render_settings(options, *scene);
                              if (!options.threads)
@@ -817,6 +851,7 @@ int run(const World& world, int argc, char** argv) {
                                    std::min(cpus_available(), glint::limits::max_threads);
                            })))
       return status;
+    times.ready = seconds_since(start);
   }
   const glint::TileGrid grid(settings);
   const int threads = int(std::min<std::size_t>(std::size_t(settings.threads), grid.count));
@@ -849,8 +884,10 @@ int run(const World& world, int argc, char** argv) {
                                        &cli::stop_requested};
     const glint::RenderResult result = coordinator.render(control, start.passes_done);
     renderer.reset();
+    std::string lines = coordinator.report_lines(mpi.verbose);
+    if (mpi.verbose) lines += load_line(times, mpi);
     return cli::finish_run(kProgram, options, output, settings, result, *keeper,
-                           {coordinator.workers(), coordinator.report_lines(mpi.verbose)});
+                           {coordinator.workers(), lines});
   } catch (const glint::ImageWriteError&) {
     // The render is over and every rank has ended its work: only rank 0 fails.
     const cli::Failure failure = cli::current_failure(kProgram);
