@@ -20,6 +20,7 @@
 
 #include <mpi.h>
 #include <sched.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <atomic>
@@ -308,6 +309,14 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+/// The CPU time the calling thread has used (Linux), in seconds.
+double thread_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_THREAD, &usage);
+  const auto seconds = [](const timeval& t) { return double(t.tv_sec) + double(t.tv_usec) * 1e-6; };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
 /// How long the scene took to reach every rank, as rank 0 saw it, in seconds from the start.
 struct LoadTimes {
   std::uint64_t bytes = 0;
@@ -354,7 +363,9 @@ class RankRenderer {
  public:
   RankRenderer(const glint::Scene& scene, const glint::RenderSettings& settings,
                glint::PixelSums& sums)
-      : start_(Clock::now()), thread_([this, &scene, &settings, &sums] {
+      : start_(Clock::now()),
+        main_cpu_start_(thread_cpu_seconds()),
+        thread_([this, &scene, &settings, &sums] {
           try {
             stats_ = glint::Renderer<Variant>::render_tiles(scene, settings, sums, queue_);
           } catch (...) {
@@ -388,6 +399,8 @@ class RankRenderer {
   const glint::RenderStats& stats() const { return stats_; }
   /// Since the threads started, until finish().
   double window_seconds() const { return window_; }
+  /// The CPU time of the calling (main) thread since the threads started.
+  double main_cpu_seconds() const { return thread_cpu_seconds() - main_cpu_start_; }
 
  private:
   cli::TileQueue queue_;
@@ -395,6 +408,7 @@ class RankRenderer {
   std::optional<cli::Failure> failure_;
   std::atomic<bool> ended_{false};
   Clock::time_point start_;
+  double main_cpu_start_;
   double window_ = 0.0;
   std::thread thread_;  // last: it starts once everything it uses is made
 };
@@ -405,7 +419,8 @@ struct RankReport {
   double window_seconds = 0.0;  ///< from its threads' start to the end
   std::uint64_t rays = 0;
   std::uint64_t invalid_samples = 0;
-  std::uint64_t tiles = 0;  ///< tiles rendered, over all passes
+  std::uint64_t tiles = 0;        ///< tiles rendered, over all passes
+  double main_cpu_seconds = 0.0;  ///< its main thread's: messages, scheduling, waiting
   std::int32_t threads = 0;
 };
 
@@ -417,6 +432,7 @@ std::vector<RankReport> gather_reports(const World& world, RankRenderer& rendere
                         stats.rays,
                         stats.invalid_samples,
                         tiles,
+                        renderer.main_cpu_seconds(),
                         stats.threads};
   std::vector<RankReport> all(std::size_t(world.size));
   MPI_Gather(&mine, sizeof mine, MPI_BYTE, all.data(), sizeof mine, MPI_BYTE, 0, MPI_COMM_WORLD);
@@ -655,9 +671,10 @@ class Coordinator {
       const RankReport& rank = reports_[r];
       std::snprintf(line, sizeof line,
                     "%s: rank %zu: %d threads, %llu tiles, %.2f Mrays, idle %.3f s of %.3f s per "
-                    "thread\n",
+                    "thread; main thread %.3f s of CPU\n",
                     name.c_str(), r, rank.threads, static_cast<unsigned long long>(rank.tiles),
-                    double(rank.rays) * 1e-6, rank.idle_seconds, rank.window_seconds);
+                    double(rank.rays) * 1e-6, rank.idle_seconds, rank.window_seconds,
+                    rank.main_cpu_seconds);
       text += line;
     }
     return text;
