@@ -32,6 +32,10 @@
 #ifndef GLINT_VARIANT
 #define GLINT_VARIANT default_variant
 #endif
+// GLINT_HAVE_EXR: this program links glint::exr (examples/CMakeLists.txt, when OpenEXR is found).
+#ifdef GLINT_HAVE_EXR
+#include "glint/exr/exr_image.hpp"
+#endif
 
 namespace {
 
@@ -51,6 +55,11 @@ options:
   --tonemap OP        how the PNG shows radiance above 1: clip (default), reinhard or aces;
                       the PFM keeps the linear radiance
   --exposure EV       scale the radiance by 2^EV before tone mapping the PNG (default 0)
+  --exr FILE          also write linear radiance as an OpenEXR image, 32-bit float RGB with
+                      the render settings in its header, FILE ending in .exr (in a build
+                      with OpenEXR, Debian's libopenexr-dev)
+  --exr-half          write the EXR in 16-bit half floats: half the size, 11 significant
+                      bits; radiance above 65504, the largest half, is written as 65504
   --spp N             samples per pixel (overrides the scene's image spp)
   --max-depth N       most bounces after the camera ray; 0 = direct light only
   --width W           image width in pixels (overrides the scene)
@@ -92,6 +101,8 @@ struct Options {
   std::optional<std::string> output;
   std::optional<std::string> hdr;
   glint::ToneMapping tone_mapping;
+  std::optional<std::string> exr;
+  bool exr_half = false;
   std::optional<int> spp, max_depth, width, height, threads;
   std::uint64_t seed = 0;
   std::optional<std::string> checkpoint, resume;
@@ -143,7 +154,7 @@ glint::ToneMapOperator parse_tone_map(std::string_view option, std::string_view 
                    ", got '" + std::string(text) + "'"};
 }
 
-/// Output formats follow the file name, and only these two exist: a picture written under
+/// Output formats follow the file name, and only these exist: a picture written under
 /// another name (a PNG called out.jpg) would mislead every program that opens it.
 std::string image_path(std::string_view option, std::string_view path, std::string_view format,
                        std::string_view extension) {
@@ -181,6 +192,16 @@ Options parse_options(int argc, char** argv) {
       options.tone_mapping.op = parse_tone_map(arg, value());
     } else if (arg == "--exposure") {
       options.tone_mapping.exposure = parse_exposure(arg, value());
+    } else if (arg == "--exr") {
+      options.exr = image_path(arg, value(), "an OpenEXR image", ".exr");
+#ifndef GLINT_HAVE_EXR
+      throw UsageError{
+          "this glint-render was built without OpenEXR (Debian: libopenexr-dev); "
+          "--exr is not available: install it (scripts/install-deps --exr) and "
+          "build glint again"};
+#endif
+    } else if (arg == "--exr-half") {
+      options.exr_half = true;
     } else if (arg == "--spp") {
       options.spp = parse_integer(arg, value(), 1, glint::limits::max_samples_per_pixel);
     } else if (arg == "--max-depth") {
@@ -213,6 +234,7 @@ Options parse_options(int argc, char** argv) {
     }
   }
   if (options.scene.empty()) throw UsageError{"no scene file given"};
+  if (options.exr_half && !options.exr) throw UsageError{"--exr-half needs --exr FILE"};
   // Checked before the scene is read, which can take long: the scene cannot change this.
   if (options.width && options.height &&
       std::int64_t{*options.width} * *options.height > glint::limits::max_image_pixels)
@@ -231,7 +253,7 @@ constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
 static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free);
 std::atomic<bool> stop_requested{false};
 std::atomic<int> stop_signal{0};    ///< the first stop signal received, or 0
-constexpr int kMaxTemporaries = 3;  // the PNG, the PFM and the checkpoint
+constexpr int kMaxTemporaries = 4;  // the PNG, the PFM, the EXR and the checkpoint
 char temporaries[kMaxTemporaries][PATH_MAX];
 std::atomic<int> temporary_count{0};
 
@@ -350,6 +372,35 @@ std::uint64_t scene_file_hash(const std::string& path) {
   return hash;
 }
 
+#ifdef GLINT_HAVE_EXR
+/// The render, in the EXR header: a typed attribute per setting ("glint/..."; the seed as its
+/// decimal string, EXR having no 64-bit integers), and a line in the standard "comments"
+/// attribute that any EXR viewer shows. The scene is named as it was given.
+std::vector<glint::ExrAttribute> exr_attributes(const Options& options,
+                                                const glint::RenderSettings& settings,
+                                                const glint::RenderResult& result) {
+  const std::string seed = std::to_string(settings.seed);
+  const std::string comments =
+      "glint-render " GLINT_VERSION " (" + std::string(kVariantName) + "): " + options.scene +
+      ", " + std::to_string(result.samples_per_pixel) + " of " +
+      std::to_string(settings.samples_per_pixel) + " samples per pixel, max depth " +
+      std::to_string(settings.max_depth) + ", seed " + seed;
+  return {{"comments", comments},
+          {"glint/version", std::string(GLINT_VERSION)},
+          {"glint/variant", std::string(kVariantName)},
+          {"glint/scene", options.scene},
+          {"glint/width", settings.width},
+          {"glint/height", settings.height},
+          {"glint/samplesPerPixel", result.samples_per_pixel},
+          {"glint/samplesPerPixelRequested", settings.samples_per_pixel},
+          {"glint/maxDepth", settings.max_depth},
+          {"glint/antialiasSigma", settings.antialias_sigma},
+          {"glint/seed", seed},
+          {"glint/threads", result.stats.threads},
+          {"glint/renderSeconds", result.stats.seconds}};
+}
+#endif
+
 [[noreturn]] void usage_error(const std::string& message) {
   std::cerr << "glint-render: " << message << "\n\n" << kUsage;
   std::exit(2);
@@ -371,13 +422,15 @@ int main(int argc, char** argv) {
                                    : std::filesystem::path(options.scene).stem().string() + ".png";
     check_output(output, options.scene);
     if (options.hdr) check_output(*options.hdr, options.scene);
+    if (options.exr) check_output(*options.exr, options.scene);
     if (options.checkpoint) {
       check_output(*options.checkpoint, options.scene);
       // The files are renamed into place together: one would silently replace the other.
       const auto resolved = [](const std::string& path) {
         return std::filesystem::weakly_canonical(std::filesystem::absolute(path));
       };
-      for (const std::optional<std::string>& image : {std::optional(output), options.hdr})
+      for (const std::optional<std::string>& image :
+           {std::optional(output), options.hdr, options.exr})
         if (image && resolved(*image) == resolved(*options.checkpoint))
           throw glint::ImageWriteError("cannot write the checkpoint " + *options.checkpoint +
                                        ": it is also the image " + *image);
@@ -464,6 +517,17 @@ int main(int argc, char** argv) {
     }
     std::vector<glint::FileContents> files{{output, glint::encode_png(result.film, options.tone_mapping)}};
     if (options.hdr) files.push_back({*options.hdr, glint::encode_pfm(result.film)});
+#ifdef GLINT_HAVE_EXR
+    std::size_t clamped_halves = 0;
+    if (options.exr) {
+      glint::ExrEncoded exr = glint::encode_exr(
+          result.film,
+          {options.exr_half ? glint::ExrPixelType::float16 : glint::ExrPixelType::float32,
+           exr_attributes(options, settings, result)});
+      clamped_halves = exr.clamped_values;
+      files.push_back({*options.exr, std::move(exr.bytes)});
+    }
+#endif
     if (options.checkpoint)
       files.push_back(
           {*options.checkpoint, glint::encode_checkpoint(key, last_passes, last_spp, last_sums)});
@@ -488,6 +552,13 @@ int main(int argc, char** argv) {
                    "written as the largest float (%g)\n",
                    static_cast<unsigned long long>(result.stats.clamped_pixels),
                    double(std::numeric_limits<float>::max()));
+#ifdef GLINT_HAVE_EXR
+    if (clamped_halves > 0)
+      std::fprintf(stderr,
+                   "glint-render: warning: %zu channel values beyond the largest half were "
+                   "written to %s as %g\n",
+                   clamped_halves, options.exr->c_str(), double(glint::kExrLargestHalf));
+#endif
     if (options.checkpoint && !result.complete())
       std::fprintf(stderr,
                    "glint-render: %s holds the render so far: continue it with --resume %s\n",

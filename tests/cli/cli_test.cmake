@@ -72,6 +72,81 @@ glint_cli_test(nan-exposure STATUS 2 STDERR "--exposure expects stops from -64 t
                ARGS ${glint_cli_scenes}/tiny.scene --exposure nan)
 glint_cli_test(tonemap-aces STATUS 0 EXPECT_OUTPUT OUTPUT out.png
                ARGS ${glint_cli_scenes}/tiny.scene -o out.png --spp 2 --tonemap aces --exposure -1.5)
+# OpenEXR output (--exr, --exr-half): the name and the options are checked in every build;
+# a glint-render built without OpenEXR refuses --exr with status 2, saying why.
+glint_cli_test(exr-not-exr STATUS 2
+               STDERR "--exr writes an OpenEXR image: the file name must end in .exr, got 'out.jpg'"
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --exr out.jpg OUTPUT out.png)
+glint_cli_test(exr-half-alone STATUS 2 STDERR "--exr-half needs --exr FILE"
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --exr-half OUTPUT out.png)
+if(NOT TARGET glint::exr)
+  glint_cli_test(exr-not-built STATUS 2
+                 STDERR "this glint-render was built without OpenEXR \\(Debian: libopenexr-dev\\)"
+                 ARGS ${glint_cli_scenes}/tiny.scene -o out.png --exr out.exr OUTPUT out.png)
+else()
+  glint_cli_test(exr-missing-directory STATUS 1 STDERR "nowhere/out.exr: directory .* does not exist"
+                 ARGS ${glint_cli_scenes}/tiny.scene -o out.png --exr nowhere/out.exr
+                 OUTPUT out.png)
+  glint_cli_test(exr-is-checkpoint STATUS 1
+                 STDERR "cannot write the checkpoint out.exr: it is also the image out.exr"
+                 ARGS ${glint_cli_scenes}/tiny.scene -o out.png --exr out.exr --checkpoint out.exr
+                 OUTPUT out.exr)
+  # All four outputs at once: the most temporaries glint-render keeps for its signal handler.
+  glint_cli_test(exr-renders STATUS 0 EXPECT_OUTPUT OUTPUT out.exr
+                 ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --exr out.exr
+                      --checkpoint out.ck --spp 2)
+
+  # The EXR read back against the PFM of the same render (tests/cli/exr_check.cpp), and its
+  # attributes.
+  add_executable(glint-exr-check ${CMAKE_CURRENT_LIST_DIR}/exr_check.cpp)
+  target_link_libraries(glint-exr-check PRIVATE glint::exr glint_project_options)
+  function(glint_exr_cli_test name)
+    cmake_parse_arguments(arg "" "STDERR" "ARGS;CHECK_ARGS;EXPECT" ${ARGN})
+    string(REPLACE ";" "|" joined_args "${arg_ARGS}")
+    string(REPLACE ";" "|" joined_check_args "${arg_CHECK_ARGS}")
+    string(REPLACE ";" "|" joined_expect "${arg_EXPECT}")
+    set(defines -DPROGRAM=$<TARGET_FILE:glint-render> "-DARGS=${joined_args}"
+        -DCHECK=$<TARGET_FILE:glint-exr-check> "-DCHECK_ARGS=${joined_check_args}"
+        "-DEXPECT=${joined_expect}" -DSCRATCH=${PROJECT_BINARY_DIR}/cli-test/${name})
+    if(DEFINED arg_STDERR)
+      list(APPEND defines "-DEXPECT_STDERR=${arg_STDERR}")
+    endif()
+    add_test(NAME "cli: ${name}" COMMAND ${CMAKE_COMMAND} ${defines}
+             -P ${CMAKE_CURRENT_LIST_DIR}/exr_matches_pfm.cmake)
+    set_tests_properties("cli: ${name}" PROPERTIES LABELS "cli;exr")
+  endfunction()
+  glint_exr_cli_test(exr-matches-pfm
+    ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --exr out.exr --spp 3 --seed 7
+         --threads 1
+    EXPECT "pixel type: float" "pixels: identical to the PFM"
+           "comments \\(string\\) = <glint-render [0-9]+\\.[0-9]+\\.[0-9]+ \\([a-z_]+\\): .*tiny\\.scene, 3 of 3 samples per pixel, max depth 3, seed 7>"
+           "glint/version \\(string\\) = <[0-9]+\\.[0-9]+\\.[0-9]+>"
+           "glint/variant \\(string\\) = <[a-z_]+>" "glint/scene \\(string\\) = <.*tiny\\.scene>"
+           "glint/width \\(int\\) = <24>" "glint/height \\(int\\) = <16>"
+           "glint/samplesPerPixel \\(int\\) = <3>" "glint/samplesPerPixelRequested \\(int\\) = <3>"
+           "glint/maxDepth \\(int\\) = <3>" "glint/antialiasSigma \\(float\\) = <[0-9.]+>"
+           "glint/seed \\(string\\) = <7>" "glint/threads \\(int\\) = <1>"
+           "glint/renderSeconds \\(double\\) = <[0-9.e-]+>")
+  glint_exr_cli_test(exr-half-matches-pfm
+    ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --exr out.exr --exr-half --spp 2
+         --width 40 --height 30 --max-depth 5 --seed 18446744073709551615
+    CHECK_ARGS --half
+    EXPECT "pixel type: half" "pixels: within half precision of the PFM"
+           "glint/width \\(int\\) = <40>" "glint/maxDepth \\(int\\) = <5>"
+           "glint/seed \\(string\\) = <18446744073709551615>")
+  # A lamp of radiance 1e6: the half EXR holds 65504 there, and glint-render says so.
+  glint_exr_cli_test(exr-half-clamps
+    ARGS ${glint_cli_scenes}/bright-lamp.scene -o out.png --hdr out.pfm --exr out.exr --exr-half
+    STDERR "warning: [0-9]+ channel values beyond the largest half were written to out\\.exr as 65504"
+    CHECK_ARGS --half EXPECT "pixels: within half precision of the PFM")
+  # Stopped early: the header says how many samples the image holds of those asked for.
+  glint_exr_cli_test(exr-time-limit
+    ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --exr out.exr --spp 64
+         --time-limit 0
+    EXPECT "pixels: identical to the PFM" "glint/samplesPerPixel \\(int\\) = <1>"
+           "glint/samplesPerPixelRequested \\(int\\) = <64>" " 1 of 64 samples per pixel")
+endif()
+
 glint_cli_test(bad-time-limit STATUS 2 STDERR "--time-limit expects seconds from 0 to 1e9, got '-1'"
                ARGS ${glint_cli_scenes}/tiny.scene --time-limit -1)
 glint_cli_test(bad-checkpoint-interval STATUS 2

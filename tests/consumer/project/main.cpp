@@ -4,6 +4,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#ifdef GLINT_CONSUMER_EXR
+#include <glint/exr/exr_image.hpp>
+#endif
 
 int main(int argc, char** argv) {
   if (argc != 2) return 2;
@@ -32,5 +35,14 @@ int main(int argc, char** argv) {
     return 1;
   }
   glint::write_png(result.film, argv[1]);
+#ifdef GLINT_CONSUMER_EXR
+  const std::filesystem::path exr = std::filesystem::path(argv[1]).replace_extension(".exr");
+  glint::write_exr(result.film, exr, {glint::ExrPixelType::float32, {{"consumer", 1}}});
+  const glint::ExrImage back = glint::read_exr(exr);
+  if (back.film.pixels() != result.film.pixels() || !back.find("consumer")) {
+    std::fprintf(stderr, "the EXR read back differs from the film\n");
+    return 1;
+  }
+#endif
   return std::filesystem::file_size(argv[1]) > 0 ? 0 : 1;
 }
