@@ -9,8 +9,11 @@
 // The manifest is a tab-separated text file; empty lines and lines starting with '#' are
 // skipped, and relative paths are relative to the manifest's directory:
 //
-//   reference<TAB>SCENE<TAB>PFM[<TAB>DESCRIPTION]
-//   variant<TAB>SCENE<TAB>VARIANT<TAB>PFM<TAB>CPU_SECONDS<TAB>SPP[<TAB>DESCRIPTION]
+//   reference<TAB>SCENE<TAB>IMAGE[<TAB>DESCRIPTION]
+//   variant<TAB>SCENE<TAB>VARIANT<TAB>IMAGE<TAB>CPU_SECONDS<TAB>SPP[<TAB>DESCRIPTION]
+//
+// An IMAGE is linear radiance: a PFM file, or an OpenEXR file (name ending in .exr) in a build
+// with OpenEXR (GLINT_HAVE_EXR: glint::exr is linked).
 //
 // Every scene needs one reference, of the same size as its variants' images. Scenes and
 // variants keep the manifest's order. DIR gets index.html (self-contained: styles, code and
@@ -45,6 +48,9 @@
 #include "glint/image/tone_map.hpp"
 #include "glint/io/image_reader.hpp"
 #include "glint/io/image_writer.hpp"
+#ifdef GLINT_HAVE_EXR
+#include "glint/exr/exr_image.hpp"
+#endif
 
 namespace {
 
@@ -57,8 +63,8 @@ reference (images, error maps, CPU time and RMSE), and the PNG images it shows b
 
 MANIFEST is tab-separated, one image a line ('#' starts a comment line; relative paths are
 relative to MANIFEST's directory):
-  reference<TAB>SCENE<TAB>PFM[<TAB>DESCRIPTION]
-  variant<TAB>SCENE<TAB>VARIANT<TAB>PFM<TAB>CPU_SECONDS<TAB>SPP[<TAB>DESCRIPTION]
+  reference<TAB>SCENE<TAB>IMAGE[<TAB>DESCRIPTION]
+  variant<TAB>SCENE<TAB>VARIANT<TAB>IMAGE<TAB>CPU_SECONDS<TAB>SPP[<TAB>DESCRIPTION]
 
 options:
   -o, --output DIR    where the page and its images go (made if missing)
@@ -69,6 +75,18 @@ options:
   --note TEXT         a line under the title (how the images were made)
   -h, --help          this help
 )";
+#ifdef GLINT_HAVE_EXR
+constexpr std::string_view kImageKinds =
+    "\nIMAGE: a PFM or OpenEXR (.exr) file of linear radiance.\n";
+#else
+constexpr std::string_view kImageKinds =
+    "\nIMAGE: a PFM file of linear radiance (this build has no OpenEXR, so no .exr).\n";
+#endif
+
+void print_usage(std::FILE* to) {
+  std::fputs(kUsage.data(), to);
+  std::fputs(kImageKinds.data(), to);
+}
 
 /// A command-line error: status 2.
 struct UsageError {
@@ -263,10 +281,24 @@ std::vector<Scene> read_manifest(const fs::path& manifest) {
 // ---------------------------------------------------------------------------------------------
 // Images and numbers
 
+glint::Film read_film(const fs::path& path) {
+  const std::string extension = path.extension().string();
+  if (extension == ".exr" || extension == ".EXR") {
+#ifdef GLINT_HAVE_EXR
+    return glint::read_exr(path).film;
+#else
+    throw glint::ImageReadError(path.string() +
+                                ": an OpenEXR image, and this glint-compare was built without "
+                                "OpenEXR (Debian: libopenexr-dev, scripts/install-deps --exr)");
+#endif
+  }
+  return glint::read_pfm(path);
+}
+
 glint::Film read_image(const Image& image) {
   glint::Film film;
   try {
-    film = glint::read_pfm(image.path);
+    film = read_film(image.path);
   } catch (const glint::Error& error) {
     throw Failure{image.where + ": " + error.what()};
   }
@@ -447,7 +479,7 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
     if (arg == "-h" || arg == "--help") {
-      std::fputs(kUsage.data(), stdout);
+      print_usage(stdout);
       return 0;
     }
   }
@@ -457,7 +489,8 @@ int main(int argc, char** argv) {
     std::printf("glint-compare: wrote %s\n", (options.output / "index.html").c_str());
     return 0;
   } catch (const UsageError& error) {
-    std::fprintf(stderr, "glint-compare: %s\n%s", error.message.c_str(), kUsage.data());
+    std::fprintf(stderr, "glint-compare: %s\n", error.message.c_str());
+    print_usage(stderr);
     return 2;
   } catch (const Failure& failure) {
     std::fprintf(stderr, "glint-compare: error: %s\n", failure.message.c_str());

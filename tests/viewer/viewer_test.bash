@@ -11,8 +11,9 @@
 # The page says what happened through attributes, which --dump-dom shows after its script ran:
 # <body data-state="done" data-images="N" data-loaded="N" data-failed="0">, and one table row
 # per variant with data-variant="NAME". Exit status 0 on success, 77 when Chromium is missing
-# and scripts/install-deps --browser cannot install it (ctest's SKIP_RETURN_CODE: reported as
-# skipped, with the reason below, never as a pass), 1 on a failure with the reason on stderr.
+# and scripts/install-deps --browser cannot install it, or for the EXR case in a build without
+# OpenEXR (ctest's SKIP_RETURN_CODE: reported as skipped, with the reason on stderr, never as
+# a pass), 1 on a failure with the reason on stderr.
 # GLINT_VIEWER_BROWSER names another program than chromium (a missing one tries the skip).
 set -euo pipefail
 case_name=$1 scratch=$2 repo=$3 render_report=$4 render_fast=$5 compare=$6 screenshot_check=$7
@@ -208,6 +209,24 @@ case_errors() {
   cp -r page before
   "$compare" missing.tsv -o page 2>/dev/null && fail "glint-compare accepted a missing image"
   diff -r before page >/dev/null || fail "a failed run changed the earlier page"
+}
+
+# EXR results read as PFM ones are: the same renders as float32 EXR give the same page, byte
+# for byte. Skipped (77) in a build without OpenEXR, where glint-compare refuses .exr.
+case_exr() {
+  if ! "$compare" --help | grep -q "PFM or OpenEXR"; then
+    echo "SKIPPED ($case_name): glint-compare was built without OpenEXR" \
+      "(scripts/install-deps --exr, then configure again)" >&2
+    exit 77
+  fi
+  "$render_fast" "$scene" "${size[@]}" --spp 64 --seed 1000003 --hdr reference.pfm \
+    --exr reference.exr -o reference.png
+  "$render_report" "$scene" "${size[@]}" --spp 4 --hdr report.pfm --exr report.exr -o report.png
+  write_manifest pfm.tsv "reference|tiny|reference.pfm" "variant|tiny|report|report.pfm|0.02|4"
+  write_manifest exr.tsv "reference|tiny|reference.exr" "variant|tiny|report|report.exr|0.02|4"
+  "$compare" pfm.tsv -o from-pfm >/dev/null
+  "$compare" exr.tsv -o from-exr >/dev/null
+  diff -r from-pfm from-exr >/dev/null || fail "the pages from PFM and from EXR differ"
 }
 
 "case_${case_name//-/_}"
