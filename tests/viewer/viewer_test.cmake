@@ -24,6 +24,8 @@ foreach(case page keys missing-image errors exr)
                    $<TARGET_FILE:glint-render-report> $<TARGET_FILE:glint-render-fast>
                    $<TARGET_FILE:glint-compare> $<TARGET_FILE:glint-viewer-screenshot-check>)
   # 77: Chromium is missing and cannot be installed (or, for `exr`, the build has no OpenEXR);
-  # ctest reports the test as skipped.
-  set_tests_properties("viewer: ${case}" PROPERTIES LABELS viewer SKIP_RETURN_CODE 77 TIMEOUT 120)
+  # ctest reports the test as skipped. One at a time: two installs at once would fight over
+  # apt's lock, and the loser would skip.
+  set_tests_properties("viewer: ${case}" PROPERTIES LABELS viewer SKIP_RETURN_CODE 77 TIMEOUT 120
+                       RESOURCE_LOCK glint_browser)
 endforeach()
