@@ -12,15 +12,14 @@
 // compare. Exit status: 0 compared, 1 unreadable file, size mismatch or non-finite values,
 // 2 bad command line.
 
-#include <cmath>
 #include <cstddef>
 #include <cstdio>
 #include <exception>
 #include <string>
 #include <string_view>
 
+#include "glint/image/compare.hpp"
 #include "glint/io/image_reader.hpp"
-#include "glint/io/image_writer.hpp"
 
 namespace {
 
@@ -28,37 +27,6 @@ constexpr std::string_view kUsage =
     "usage: glint-compare-images TEST.pfm REFERENCE.pfm\n"
     "prints rmse=... relative_rmse=... (rmse / mean of REFERENCE) mean_reference=... width=...\n"
     "height=... over all pixels and channels of the linear radiance\n";
-
-struct Comparison {
-  double rmse = 0.0;
-  double mean_reference = 0.0;
-  std::size_t non_finite = 0;
-};
-
-Comparison compare(const glint::Film& test, const glint::Film& reference) {
-  // Sums in double: a million pixels of float squares would lose digits in float.
-  double squared_error = 0.0;
-  double reference_sum = 0.0;
-  Comparison result;
-  for (std::size_t i = 0; i < test.pixels().size(); ++i) {
-    const glint::Color& a = test.pixels()[i];
-    const glint::Color& b = reference.pixels()[i];
-    for (int c = 0; c < 3; ++c) {
-      const double x = a[c];
-      const double y = b[c];
-      if (!std::isfinite(x) || !std::isfinite(y)) {
-        ++result.non_finite;
-        continue;
-      }
-      squared_error += (x - y) * (x - y);
-      reference_sum += y;
-    }
-  }
-  const double values = 3.0 * double(test.pixels().size());
-  result.rmse = std::sqrt(squared_error / values);
-  result.mean_reference = reference_sum / values;
-  return result;
-}
 
 }  // namespace
 
@@ -80,18 +48,17 @@ int main(int argc, char** argv) {
                    reference.height());
       return 1;
     }
-    const Comparison result = compare(test, reference);
+    const glint::ImageComparison result = glint::compare_images(test, reference);
     if (result.non_finite > 0) {
       std::fprintf(stderr,
                    "glint-compare-images: error: %zu values are NaN or infinite (in %s or %s)\n",
                    result.non_finite, argv[1], argv[2]);
       return 1;
     }
-    // A black reference has no relative error; say so rather than print inf.
-    const double relative =
-        result.mean_reference > 0.0 ? result.rmse / result.mean_reference : std::nan("");
+    // A black reference has no relative error: nan says so rather than inf.
     std::printf("rmse=%.6g relative_rmse=%.6g mean_reference=%.6g width=%d height=%d\n",
-                result.rmse, relative, result.mean_reference, test.width(), test.height());
+                result.rmse, result.relative_rmse(), result.mean_reference, test.width(),
+                test.height());
     return 0;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "glint-compare-images: error: %s\n", error.what());

@@ -180,19 +180,28 @@ inline std::vector<std::uint8_t> to_srgb8(const Film& film, const ToneMapping& t
   return bytes;
 }
 
+/// The PNG file of 8-bit RGB pixels (`rgb`: rows from the top, three bytes a pixel, already
+/// display-encoded), in memory. Throws ImageWriteError if encoding fails or `rgb` does not
+/// hold width x height pixels.
+inline std::vector<char> encode_png_rgb8(int width, int height,
+                                         const std::vector<std::uint8_t>& rgb) {
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (width < 1 || height < 1 || rgb.size() != std::size_t(width) * std::size_t(height) * 3)
+    throw ImageWriteError("PNG encoding of a " + size + " image failed: " +
+                          std::to_string(rgb.size()) + " bytes of pixels do not match");
+  std::vector<char> encoded;
+  const auto append = [](void* context, void* data, int bytes) {
+    auto* out = static_cast<std::vector<char>*>(context);
+    out->insert(out->end(), static_cast<char*>(data), static_cast<char*>(data) + bytes);
+  };
+  if (!stbi_write_png_to_func(append, &encoded, width, height, 3, rgb.data(), width * 3))
+    throw ImageWriteError("PNG encoding of a " + size + " image failed");
+  return encoded;
+}
+
 /// The PNG file of the film, in memory. Throws ImageWriteError if encoding fails.
 inline std::vector<char> encode_png(const Film& film, const ToneMapping& tone_mapping = {}) {
-  const std::vector<std::uint8_t> pixels = to_srgb8(film, tone_mapping);
-  std::vector<char> encoded;
-  const auto append = [](void* context, void* data, int size) {
-    auto* out = static_cast<std::vector<char>*>(context);
-    out->insert(out->end(), static_cast<char*>(data), static_cast<char*>(data) + size);
-  };
-  if (!stbi_write_png_to_func(append, &encoded, film.width(), film.height(), 3, pixels.data(),
-                              film.width() * 3))
-    throw ImageWriteError("PNG encoding of a " + std::to_string(film.width()) + "x" +
-                          std::to_string(film.height()) + " image failed");
-  return encoded;
+  return encode_png_rgb8(film.width(), film.height(), to_srgb8(film, tone_mapping));
 }
 
 /// The PFM file of the film, in memory: portable float map, linear RGB, little-endian

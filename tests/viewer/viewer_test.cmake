@@ -1,0 +1,31 @@
+# glint-compare's page in headless Chromium, and glint-compare's refusals (label `viewer`):
+# tests/viewer/viewer_test.bash. glint-compare is built in bench/ and the renderers in
+# examples/, so both must be on; the targets are named through generator expressions because
+# bench/ is added after tests/.
+if(NOT (GLINT_BUILD_BENCHMARKS AND GLINT_BUILD_EXAMPLES))
+  message(STATUS "glint: no viewer tests (they need GLINT_BUILD_BENCHMARKS and "
+                 "GLINT_BUILD_EXAMPLES)")
+  return()
+endif()
+find_program(GLINT_BASH bash)
+if(NOT GLINT_BASH)
+  message(STATUS "glint: no bash, so no viewer tests")
+  return()
+endif()
+
+# Reads a screenshot with stb_image, whose implementation Debian's libstb contains.
+add_executable(glint-viewer-screenshot-check ${CMAKE_CURRENT_LIST_DIR}/screenshot_check.cpp)
+target_link_libraries(glint-viewer-screenshot-check PRIVATE glint::glint glint_project_options)
+
+foreach(case page keys missing-image errors exr)
+  add_test(NAME "viewer: ${case}"
+           COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/viewer_test.bash ${case}
+                   ${PROJECT_BINARY_DIR}/viewer-test/${case} ${PROJECT_SOURCE_DIR}
+                   $<TARGET_FILE:glint-render-report> $<TARGET_FILE:glint-render-fast>
+                   $<TARGET_FILE:glint-compare> $<TARGET_FILE:glint-viewer-screenshot-check>)
+  # 77: Chromium is missing and cannot be installed (or, for `exr`, the build has no OpenEXR);
+  # ctest reports the test as skipped. One at a time: two installs at once would fight over
+  # apt's lock, and the loser would skip.
+  set_tests_properties("viewer: ${case}" PROPERTIES LABELS viewer SKIP_RETURN_CODE 77 TIMEOUT 120
+                       RESOURCE_LOCK glint_browser)
+endforeach()
