@@ -855,18 +855,18 @@ int run(const World& world, int argc, char** argv) {
       scene_hash = glint::fnv1a(text.data(), text.size());
     std::uint64_t rank0_hash = scene_hash;
     if (mpi.scene_everywhere) MPI_Bcast(&rank0_hash, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
-    if (int status = agree(world, attempt([&] {
-                             if (rank0_hash != scene_hash)
-                               throw glint::Error("cannot render " + options.scene +
-                                                  ": its bytes here differ from rank 0's");
-                             scene.emplace(cli::parse_and_build(loading, text, options.scene));
-                             times.built = seconds_since(start);
-                             glint::check_supported<Variant>(*scene);
-                             settings = cli::render_settings(options, *scene);
-                             if (!options.threads)
-                               settings.threads =
-                                   std::min(cpus_available(), glint::limits::max_threads);
-                           })))
+    if (int status =
+            agree(world, attempt([&] {
+                    if (rank0_hash != scene_hash)
+                      throw glint::Error("cannot render " + options.scene +
+                                         ": its bytes here differ from rank 0's");
+                    scene.emplace(cli::parse_and_build(loading, std::move(text), options.scene));
+                    times.built = seconds_since(start);
+                    glint::check_supported<Variant>(*scene);
+                    settings = cli::render_settings(options, *scene);
+                    if (!options.threads)
+                      settings.threads = std::min(cpus_available(), glint::limits::max_threads);
+                  })))
       return status;
     times.ready = seconds_since(start);
   }
