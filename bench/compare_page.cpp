@@ -127,14 +127,11 @@ Options parse_options(int argc, char** argv) {
       options.tone_mapping.op = *op;
     } else if (arg == "--exposure") {
       const std::string_view text = value();
-      float ev = 0.0f;
-      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), ev);
-      if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(ev) ||
-          std::fabs(ev) > glint::limits::max_exposure)
-        throw UsageError{"--exposure expects stops within +-" +
-                         std::to_string(int(glint::limits::max_exposure)) + ", got '" +
+      const std::optional<float> ev = glint::parse_exposure(text);
+      if (!ev)
+        throw UsageError{"--exposure expects " + glint::exposure_range_text() + ", got '" +
                          std::string(text) + "'"};
-      options.tone_mapping.exposure = ev;
+      options.tone_mapping.exposure = *ev;
     } else if (arg == "--baseline") {
       options.baseline = value();
     } else if (arg == "--title") {

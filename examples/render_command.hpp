@@ -157,15 +157,9 @@ inline double parse_seconds(std::string_view option, std::string_view text) {
 
 /// A number of stops: a decimal number within +-glint::limits::max_exposure.
 inline float parse_exposure(std::string_view option, std::string_view text) {
-  float value = 0.0f;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() ||
-      !(std::abs(value) <= glint::limits::max_exposure))
-    throw UsageError{std::string(option) + " expects stops from -" +
-                     std::to_string(int(glint::limits::max_exposure)) + " to " +
-                     std::to_string(int(glint::limits::max_exposure)) + ", got '" +
-                     std::string(text) + "'"};
-  return value;
+  if (const std::optional<float> value = glint::parse_exposure(text)) return *value;
+  throw UsageError{std::string(option) + " expects " + glint::exposure_range_text() + ", got '" +
+                   std::string(text) + "'"};
 }
 
 inline glint::ToneMapOperator parse_tone_map(std::string_view option, std::string_view text) {

@@ -136,3 +136,14 @@ TEST_CASE("tone mapping: the default mapping writes the plain sRGB bytes", "[ima
   CHECK(mapped[0] == glint::linear_to_srgb8(0.5f));
   CHECK(mapped[0] == 188);  // 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354, times 255
 }
+
+TEST_CASE("tone mapping: exposure text parses to stops within the limit, nothing else does",
+          "[tonemap]") {
+  CHECK(glint::parse_exposure("1.5") == 1.5f);
+  CHECK(glint::parse_exposure("-64") == -glint::limits::max_exposure);
+  CHECK(glint::parse_exposure("64") == glint::limits::max_exposure);
+  CHECK(glint::parse_exposure("0") == 0.0f);
+  for (const char* bad : {"65", "-64.5", "nan", "inf", "-inf", "1x", "", " 1", "1e3"})
+    CHECK_FALSE(glint::parse_exposure(bad));
+  CHECK(glint::exposure_range_text() == "stops from -64 to 64");
+}

@@ -7,11 +7,13 @@
 // Per-channel curves desaturate very bright colours towards white, as film does.
 
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <utility>
 
 namespace glint {
@@ -60,6 +62,23 @@ namespace limits {
 /// Exposure is a power of two: beyond +-64 EV a float radiance over- or underflows anyway.
 inline constexpr float max_exposure = 64.0f;
 }  // namespace limits
+
+/// An exposure written as text ("-1.5"): the number of stops, or nullopt unless the whole text
+/// is a decimal number within +-limits::max_exposure (so never NaN or infinite).
+inline std::optional<float> parse_exposure(std::string_view text) {
+  float value = 0.0f;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() ||
+      !(std::abs(value) <= limits::max_exposure))
+    return std::nullopt;
+  return value;
+}
+
+/// "stops from -64 to 64": the exposure's range for a message.
+inline std::string exposure_range_text() {
+  const std::string bound = std::to_string(int(limits::max_exposure));
+  return "stops from -" + bound + " to " + bound;
+}
 
 /// The display value in [0, 1] of one channel's linear radiance, which may be anything: NaN,
 /// negative values and -inf give 0, +inf gives 1. Non-decreasing in `linear`.
