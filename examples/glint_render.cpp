@@ -5,10 +5,12 @@
 // glint-render-mpi.
 
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "glint/glint.hpp"
 #include "load_progress.hpp"
@@ -61,16 +63,16 @@ int main(int argc, char** argv) {
   cli::install_signal_handlers(kProgram.name, kStopSignals);
   try {
     const std::string output = cli::check_outputs(options);
+    std::uint64_t scene_hash = 0;  // of the bytes parsed, for checkpoints
     const glint::Scene scene = [&] {
       cli::LoadProgress loading(!options.quiet, options.scene);
-      return cli::parse_and_build(
-          loading, glint::read_scene_file_text(options.scene, loading.reader_callback()),
-          options.scene);
+      std::string text = glint::read_scene_file_text(options.scene, loading.reader_callback());
+      if (options.checkpoint || options.resume) scene_hash = cli::scene_text_hash(text);
+      return cli::parse_and_build(loading, std::move(text), options.scene);
     }();
     glint::check_supported<Variant>(scene);
     const glint::RenderSettings settings = cli::render_settings(options, scene);
-    cli::PassKeeper keeper(kProgram, options, settings,
-                           [&] { return cli::scene_file_hash(options.scene); });
+    cli::PassKeeper keeper(kProgram, options, settings, scene_hash);
 
     const glint::RenderControl control{cli::ProgressPrinter(!options.quiet), keeper.callback(),
                                        &cli::stop_requested};

@@ -852,7 +852,7 @@ int run(const World& world, int argc, char** argv) {
     times.sent = seconds_since(start);
     times.bytes = text.size();
     if (mpi.scene_everywhere || (world.rank == 0 && (options.checkpoint || options.resume)))
-      scene_hash = glint::fnv1a(text.data(), text.size());
+      scene_hash = cli::scene_text_hash(text);
     std::uint64_t rank0_hash = scene_hash;
     if (mpi.scene_everywhere) MPI_Bcast(&rank0_hash, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
     if (int status =
@@ -878,8 +878,7 @@ int run(const World& world, int argc, char** argv) {
   std::optional<RankRenderer> renderer;
   if (int status = agree(world, attempt([&] {
                            if (world.rank == 0) {
-                             keeper.emplace(kProgram, options, settings,
-                                            [&] { return scene_hash; });
+                             keeper.emplace(kProgram, options, settings, scene_hash);
                              if (const glint::RenderStart start = keeper->start(); start.sums)
                                sums = *start.sums;
                            }

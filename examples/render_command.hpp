@@ -24,7 +24,6 @@
 #include <functional>
 #include <iostream>
 #include <limits>
-#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -428,19 +427,10 @@ inline void write_staged(const std::vector<glint::FileContents>& files) {
 
 // --- The scene and the settings -----------------------------------------------------------
 
-/// The hash of the scene file's bytes that a checkpoint records: the scene as written, so that
-/// any edit, even one that renders the same, makes a checkpoint another scene's. The same as
-/// glint::fnv1a of the file's text (FNV-1a runs byte by byte).
-inline std::uint64_t scene_file_hash(const std::string& path) {
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                             &std::fclose);
-  if (!file) throw glint::Error("cannot read " + path + ": " + std::strerror(errno));
-  std::uint64_t hash = glint::fnv1a(nullptr, 0);
-  std::vector<char> buffer(1 << 16);
-  for (std::size_t read; (read = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0;)
-    hash = glint::fnv1a(buffer.data(), read, hash);
-  if (std::ferror(file.get())) throw glint::Error("cannot read " + path);
-  return hash;
+/// The hash of a scene file's bytes that a checkpoint records: of the text that was parsed, so
+/// that any edit, even one that renders the same, makes a checkpoint another scene's.
+inline std::uint64_t scene_text_hash(std::string_view text) {
+  return glint::fnv1a(text.data(), text.size());
 }
 
 /// Parses the scene's text, read from `source`, and builds it, with its loading reported. The
@@ -480,14 +470,13 @@ inline glint::RenderSettings render_settings(const Options& options, const glint
 /// --checkpoint-interval seconds and applies --time-limit.
 class PassKeeper {
  public:
-  /// `scene_hash()` gives the hash of the scene file's bytes; called only when a checkpoint is
+  /// `scene_hash`: scene_text_hash of the scene file's text, needed only when a checkpoint is
   /// written or resumed. Throws CheckpointError for a checkpoint that cannot be resumed.
-  template <typename SceneHash>
   PassKeeper(const Program& program, const Options& options, const glint::RenderSettings& settings,
-             const SceneHash& scene_hash)
+             std::uint64_t scene_hash)
       : program_(program), options_(options) {
     if (options.checkpoint || options.resume)
-      key_ = glint::CheckpointKey::of(scene_hash(), program.variant, settings);
+      key_ = glint::CheckpointKey::of(scene_hash, program.variant, settings);
     if (options.resume) {
       resumed_ = glint::read_checkpoint(*options.resume);
       glint::check_checkpoint_matches(*resumed_, key_, *options.resume);
