@@ -13,6 +13,7 @@
 #include "glint/io/scene_reader.hpp"
 #include "glint/io/scene_writer.hpp"
 #include "glint/render/renderer.hpp"
+#include "glint/render/wavefront/wavefront_renderer.hpp"
 #include "glint/render/work_estimate.hpp"
 #include "glint/scene/scene.hpp"
 #include "glint/variants.hpp"

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "glint/geometry/ray.hpp"
+#include "glint/geometry/ray_batch.hpp"
 #include "glint/geometry/ray_sphere.hpp"
 #include "glint/geometry/sphere_bvh.hpp"
 #include "glint/geometry/sphere_set.hpp"
@@ -114,6 +115,28 @@ class Scene {
     return origin_sphere_hit(ray, hit) ||
            (!walls_.empty() ? any_linear_hit(ray) : !linear_.empty() && linear_.any_hit(ray)) ||
            (!hierarchy_.empty() && hierarchy_.any_hit(ray));
+  }
+
+  /// closest_hit for each active lane of `rays`: its hit in `hits` (t = kInfinity and
+  /// kNoSphere where there is none); returns the lanes with a hit. Exactly closest_hit's answer
+  /// lane by lane. Inactive lanes of `hits` are left as they were.
+  LaneMask closest_hits(const RayBatch& rays, LaneMask active, HitBatch& hits) const {
+    LaneMask found = 0;
+    for_each_lane(active, [&](int lane) {
+      const std::optional<SphereHit> hit = closest_hit(rays.get(lane));
+      hits.set(lane, hit.value_or(SphereHit{}));
+      if (hit) found |= LaneMask(1) << lane;
+    });
+    return found;
+  }
+
+  /// occluded for each active lane of `rays`: the lanes whose ray is blocked.
+  LaneMask occluded(const RayBatch& rays, LaneMask active) const {
+    LaneMask blocked = 0;
+    for_each_lane(active, [&](int lane) {
+      if (occluded(rays.get(lane))) blocked |= LaneMask(1) << lane;
+    });
+    return blocked;
   }
 
   SurfaceHit surface_hit(const Ray& ray, const SphereHit& hit) const {

@@ -1,0 +1,81 @@
+#pragma once
+// Eight rays and their hits in structure-of-arrays form, for the batched queries of the scene's
+// accelerators (closest hit and occlusion for eight rays at once) that the wavefront renderer
+// uses. A lane mask says which lanes hold a ray: bit i set means lane i is active. The batched
+// queries answer exactly what the single-ray queries answer for each active lane, bit for bit;
+// those stay the reference.
+
+#include <bit>
+#include <cstdint>
+
+#include "glint/geometry/accelerator.hpp"
+#include "glint/geometry/ray.hpp"
+
+namespace glint {
+
+/// Bit i is lane i of a batch.
+using LaneMask = std::uint32_t;
+
+struct alignas(32) RayBatch {
+  static constexpr int kWidth = 8;
+  static constexpr LaneMask kAllLanes = (LaneMask(1) << kWidth) - 1;
+
+  float origin_x[kWidth];
+  float origin_y[kWidth];
+  float origin_z[kWidth];
+  float direction_x[kWidth];
+  float direction_y[kWidth];
+  float direction_z[kWidth];
+  float t_min[kWidth];
+  float t_max[kWidth];
+  std::uint32_t origin_sphere[kWidth];
+  /// Ray::heads_into_origin_sphere, one bit per lane.
+  LaneMask heads_into_origin_sphere;
+
+  void set(int lane, const Ray& ray) {
+    origin_x[lane] = ray.origin.x;
+    origin_y[lane] = ray.origin.y;
+    origin_z[lane] = ray.origin.z;
+    direction_x[lane] = ray.direction.x;
+    direction_y[lane] = ray.direction.y;
+    direction_z[lane] = ray.direction.z;
+    t_min[lane] = ray.t_min;
+    t_max[lane] = ray.t_max;
+    origin_sphere[lane] = ray.origin_sphere;
+    const LaneMask bit = LaneMask(1) << lane;
+    heads_into_origin_sphere = ray.heads_into_origin_sphere ? (heads_into_origin_sphere | bit)
+                                                            : (heads_into_origin_sphere & ~bit);
+  }
+
+  Ray get(int lane) const {
+    Ray ray;
+    ray.origin = {origin_x[lane], origin_y[lane], origin_z[lane]};
+    ray.direction = {direction_x[lane], direction_y[lane], direction_z[lane]};
+    ray.t_min = t_min[lane];
+    ray.t_max = t_max[lane];
+    ray.origin_sphere = origin_sphere[lane];
+    ray.heads_into_origin_sphere = (heads_into_origin_sphere >> lane) & 1u;
+    return ray;
+  }
+};
+
+/// A closest-hit answer per lane: the hit, or t = kInfinity and kNoSphere where there is none.
+struct alignas(32) HitBatch {
+  float t[RayBatch::kWidth];
+  std::uint32_t sphere[RayBatch::kWidth];
+
+  SphereHit get(int lane) const { return {t[lane], sphere[lane]}; }
+  void set(int lane, const SphereHit& hit) {
+    t[lane] = hit.t;
+    sphere[lane] = hit.sphere;
+  }
+};
+
+/// Calls visit(lane) for each lane of `mask`, lowest first.
+template <typename Visit>
+void for_each_lane(LaneMask mask, Visit&& visit) {
+  for (; mask != 0; mask &= mask - 1)
+    visit(std::countr_zero(mask));
+}
+
+}  // namespace glint
