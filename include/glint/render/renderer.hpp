@@ -10,7 +10,9 @@
 // each tile's pixels are written by the one thread that took it, and every sample's
 // randomness comes from hashing (pixel, sample index, seed). So the image is the same bit for
 // bit whatever the thread count or scheduling. The hot loop has no locks, no allocation, no
-// virtual calls and no exceptions; threads meet only between passes.
+// virtual calls and no exceptions; threads meet only between passes. How a thread renders a
+// tile's samples is the execution model's (render/scalar_execution.hpp): one path at a time by
+// default, or a wavefront of paths (WavefrontRenderer).
 //
 // render_tiles is the same loop over work handed out by the caller (tile by tile, from any
 // schedule: glint-render-mpi's, across processes), for renders that are scheduled elsewhere.
@@ -38,6 +40,7 @@
 #include "glint/render/camera.hpp"
 #include "glint/render/path_tracer.hpp"
 #include "glint/render/render_settings.hpp"
+#include "glint/render/scalar_execution.hpp"
 #include "glint/render/tile_grid.hpp"
 #include "glint/render/work_estimate.hpp"
 #include "glint/scene/scene.hpp"
@@ -141,9 +144,14 @@ void check_supported(const Scene& scene) {
                                     "' is not supported by this renderer variant");
 }
 
-template <RenderConfig C>
+/// Renders scenes with the policies of Config C, each piece of work (a tile's samples) done by
+/// execution model E: ScalarExecution<C>, one path at a time, by default; WavefrontRenderer
+/// (render/wavefront/wavefront_renderer.hpp) is this renderer with WavefrontExecution<C>.
+template <RenderConfig C, Execution E = ScalarExecution<C>>
 class Renderer {
  public:
+  using ExecutionModel = E;
+
   /// The longest the progress callback waits while rendering: progress and the time left keep
   /// moving on scenes where a tile, or a single sample, takes longer.
   static constexpr std::chrono::milliseconds progress_interval{100};
@@ -177,8 +185,7 @@ class Renderer {
     PixelSums sums = from.sums ? *from.sums : PixelSums(settings.width, settings.height);
     RenderResult result{
         {}, {}, first_pass ? ends[first_pass - 1] : 0, int(first_pass), int(ends.size())};
-    const Camera camera(scene.camera(), settings.width, settings.height);
-    const PathTracer<C> tracer(scene, settings.max_depth);
+    const E execution(scene, settings);
 
     const TileGrid grid(settings);
     const int thread_count = threads_for(settings, grid.count);
@@ -186,13 +193,14 @@ class Renderer {
 
     Schedule schedule(grid.count, ends, first_pass);
     std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
+    std::vector<typename E::ThreadState> states = thread_states(execution, thread_count);
     {
       std::vector<std::jthread> workers;
       // Declared after the workers so that it runs before they are joined: on any way out
       // (a callback that throws included) no worker is left waiting for a pass.
       const StopWorkersOnExit stop_workers{schedule};
       start_threads(workers, thread_count, [&](int t) {
-        work(schedule, grid, tracer, camera, settings, sums, counters[std::size_t(t)]);
+        work(schedule, grid, execution, states[std::size_t(t)], sums, counters[std::size_t(t)]);
       });
 
       const std::uint64_t samples_at_start = pixels * std::uint64_t(result.samples_per_pixel);
@@ -259,11 +267,11 @@ class Renderer {
                           std::to_string(sums.height()) + " pixels for an image of " +
                           std::to_string(settings.width) + "x" + std::to_string(settings.height));
     const auto start = std::chrono::steady_clock::now();
-    const Camera camera(scene.camera(), settings.width, settings.height);
-    const PathTracer<C> tracer(scene, settings.max_depth);
+    const E execution(scene, settings);
     const TileGrid grid(settings);
     const int thread_count = threads_for(settings, grid.count);
     std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
+    std::vector<typename E::ThreadState> states = thread_states(execution, thread_count);
     {
       std::vector<std::jthread> threads;
       // Declared after the threads so that it runs before they are joined: threads started
@@ -271,7 +279,7 @@ class Renderer {
       StartGate gate;
       start_threads(threads, thread_count, [&](int t) {
         if (gate.wait())
-          work(source, grid, tracer, camera, settings, sums, counters[std::size_t(t)]);
+          work(source, grid, execution, states[std::size_t(t)], sums, counters[std::size_t(t)]);
       });
       gate.open();
     }
@@ -287,9 +295,10 @@ class Renderer {
   }
 
   /// One pixel's estimate: the mean of its samples, summed in one go. Exposed for tests and
-  /// benchmarks; render's passes give the same bits.
+  /// benchmarks; render's passes give the same bits (with the scalar execution).
   static Color render_pixel(const PathTracer<C>& tracer, const Camera& camera,
-                            const RenderSettings& settings, int x, int y, TraceCounters& counters) {
+                            const RenderSettings& settings, int x, int y,
+                            TraceCounters& counters) requires std::same_as<E, ScalarExecution<C>> {
     return render_pixel(tracer, camera, settings, x, y, counters, settings.samples_per_pixel);
   }
 
@@ -297,11 +306,11 @@ class Renderer {
   /// render stopped when `samples` samples per pixel were done holds.
   static Color render_pixel(const PathTracer<C>& tracer, const Camera& camera,
                             const RenderSettings& settings, int x, int y, TraceCounters& counters,
-                            int samples) {
+                            int samples) requires std::same_as<E, ScalarExecution<C>> {
     std::atomic<std::uint64_t> progress{0};
     std::uint64_t done = 0;
-    const ColorSum sum = add_samples(tracer, camera, settings, x, y, 0, samples, ColorSum(0.0),
-                                     counters, progress, done);
+    const ColorSum sum = ScalarExecution<C>::add_samples(tracer, camera, settings, x, y, 0, samples,
+                                                         ColorSum(0.0), counters, progress, done);
     bool out_of_range = false;
     return mean_color(sum, samples, out_of_range);
   }
@@ -331,6 +340,16 @@ class Renderer {
     const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     return static_cast<int>(
         std::min<std::size_t>(settings.threads > 0 ? settings.threads : hardware, tiles));
+  }
+
+  /// Each thread's scratch memory, allocated here, before any thread starts, so that a lack of
+  /// memory is an exception on the caller's thread and not a failure inside a worker.
+  static std::vector<typename E::ThreadState> thread_states(const E& execution, int count) {
+    std::vector<typename E::ThreadState> states;
+    states.reserve(std::size_t(count));
+    for (int t = 0; t < count; ++t)
+      states.emplace_back(execution);
+    return states;
   }
 
   /// Starts `count` threads running body(t) for t = 0, 1, ...; throws Error, saying how many
@@ -456,61 +475,14 @@ class Renderer {
 
   /// A rendering thread: the work of `source` until it has none left.
   template <typename Source>
-  static void work(Source& source, const TileGrid& grid, const PathTracer<C>& tracer,
-                   const Camera& camera, const RenderSettings& settings, PixelSums& sums,
-                   PaddedCounters& mine) {
+  static void work(Source& source, const TileGrid& grid, const E& execution,
+                   typename E::ThreadState& state, PixelSums& sums, PaddedCounters& mine) {
     std::uint64_t samples = 0;
     for (std::optional<TileWork> piece = source.next(); piece; piece = source.next()) {
-      render_tile(tracer, camera, settings, grid.tile(piece->tile), piece->first_sample,
-                  piece->last_sample, sums, mine, samples);
+      execution.render_tile(state, grid.tile(piece->tile), piece->first_sample, piece->last_sample,
+                            sums, mine.counters, mine.samples, samples);
       source.finished(*piece);
     }
-  }
-
-  /// Adds samples [first, last) of every pixel of the tile to the pixel's sum.
-  static void render_tile(const PathTracer<C>& tracer, const Camera& camera,
-                          const RenderSettings& settings, const Tile& tile, int first, int last,
-                          PixelSums& sums, PaddedCounters& mine, std::uint64_t& samples) {
-    for (int y = tile.y0; y < tile.y1; ++y)
-      for (int x = tile.x0; x < tile.x1; ++x)
-        sums.at(x, y) = add_samples(tracer, camera, settings, x, y, first, last, sums.at(x, y),
-                                    mine.counters, mine.samples, samples);
-  }
-
-  /// `sum` plus samples [first, last) of pixel (x, y), in index order; a sample that is not
-  /// finite is counted as invalid instead. `samples` counts them, published in `progress`. The one
-  /// definition of a pixel's sum, shared by render and render_pixel so that both give the same
-  /// bits. Kept out of line, and out of interprocedural optimisation, so that a program holds one
-  /// copy of it: with -ffp-contract=fast (GCC's default) each copy of the estimator may fuse
-  /// multiplies and adds differently, and two translation units' copies did move pixels by a few
-  /// ulps. A call per pixel and pass costs nothing next to its paths.
-#if defined(__GNUC__) && !defined(__clang__)
-  [[gnu::noipa]]
-#else
-  [[gnu::noinline]]
-#endif
-  static ColorSum
-  add_samples(const PathTracer<C>& tracer, const Camera& camera, const RenderSettings& settings,
-              int x, int y, int first, int last, ColorSum sum, TraceCounters& counters,
-              std::atomic<std::uint64_t>& progress, std::uint64_t& samples) {
-    typename C::sampler sampler;
-    for (int s = first; s < last; ++s) {
-      sampler.start(PixelSample{std::uint32_t(x), std::uint32_t(y), std::uint32_t(s),
-                                std::uint32_t(settings.samples_per_pixel), settings.seed});
-      Vec2 film(float(x) + 0.5f, float(y) + 0.5f);
-      if constexpr (C::antialiasing::enabled)
-        film += C::antialiasing::offset(sampler.next_2d(), settings.antialias_sigma);
-      const Color sample = tracer.radiance(camera.ray_through(film), sampler, counters);
-      if (std::isfinite(sample.x) && std::isfinite(sample.y) && std::isfinite(sample.z))
-        sum += ColorSum(sample);
-      else
-        ++counters.invalid_samples;
-    }
-    // Once per call: a store per sample kept the compiler from optimising across samples
-    // (about 1% more instructions, callgrind).
-    samples += std::uint64_t(last - first);
-    progress.store(samples, std::memory_order_relaxed);
-    return sum;
   }
 };
 

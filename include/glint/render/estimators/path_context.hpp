@@ -77,9 +77,21 @@ class PathContext {
   /// Irradiance at the hit from all point lights, through hard shadows, on the side the ray
   /// came from (lights behind it contribute nothing).
   Color direct_irradiance(const SurfaceInteraction& interaction, TraceCounters& counters) const {
+    Color irradiance(0.0f);
+    for_each_light_ray(interaction, [&](const Ray& shadow_ray, const Color& light_irradiance) {
+      ++counters.rays;
+      if (!scene_.occluded(shadow_ray)) irradiance += light_irradiance;
+    });
+    return irradiance;
+  }
+
+  /// For each point light on the side the ray came from, in the scene's order: visit(shadow
+  /// ray, the irradiance the light gives where that ray is not blocked). direct_irradiance sums
+  /// them; a batched renderer queues the rays.
+  template <typename Visit>
+  void for_each_light_ray(const SurfaceInteraction& interaction, Visit&& visit) const {
     const Vec3& point = interaction.hit.point;
     const Vec3& facing_normal = interaction.at.facing_normal;
-    Color irradiance(0.0f);
     for (const PointLight& light : scene_.lights()) {
       const Vec3 to_light = light.position - point;
       const float distance2 = glm::dot(to_light, to_light);
@@ -87,13 +99,10 @@ class PathContext {
       const Vec3 direction = to_light / distance;
       const float cosine = glm::dot(direction, facing_normal);
       if (!(cosine > 0.0f)) continue;
-      ++counters.rays;
-      if (scene_.occluded(ray_leaving_sphere(point, direction, interaction.hit.sphere,
-                                             interaction.hit.outward_normal, distance)))
-        continue;
-      irradiance += (light.intensity * cosine / distance2) * light.color;
+      visit(ray_leaving_sphere(point, direction, interaction.hit.sphere,
+                               interaction.hit.outward_normal, distance),
+            (light.intensity * cosine / distance2) * light.color);
     }
-    return irradiance;
   }
 
   /// How a ray leaving by the lobe sampled as `sample` was chosen.
@@ -133,7 +142,30 @@ class PathContext {
   Color sample_emitter(const SurfaceInteraction& interaction, const ReportMaterial<C>& material,
                        BouncePdf&& bounce_pdf, SamplerType& sampler,
                        TraceCounters& counters) const {
-    if (!has_emitters_) return Color(0.0f);
+    const std::optional<EmitterRay> sample =
+        emitter_ray(interaction, material, bounce_pdf, sampler);
+    if (!sample) return Color(0.0f);
+    const std::optional<SphereHit> hit = closest_hit(sample->ray, counters);
+    if (!hit || hit->sphere != sample->emitter_sphere) return Color(0.0f);
+    return sample->light;
+  }
+
+  /// A ray towards a point sampled on an emissive sphere, and the light it brings.
+  struct EmitterRay {
+    Ray ray;
+    /// The light arrives if the first sphere along the ray is this one: a shadow ray with the
+    /// emitter's distance as its end would have to beat the rounding of that distance.
+    std::uint32_t emitter_sphere;
+    Color light;  ///< what sample_emitter returns when it arrives
+  };
+
+  /// sample_emitter's sampling, without the visibility test: none if nothing can arrive.
+  /// Draws what sample_emitter draws.
+  template <typename BouncePdf>
+  std::optional<EmitterRay> emitter_ray(const SurfaceInteraction& interaction,
+                                        const ReportMaterial<C>& material, BouncePdf&& bounce_pdf,
+                                        SamplerType& sampler) const {
+    if (!has_emitters_) return std::nullopt;
     const EmitterTable& emitters = scene_.emitters();
     const float u_choice = sampler.next_1d();
     const Vec2 u_direction = sampler.next_2d();
@@ -143,17 +175,13 @@ class PathContext {
                                                interaction.at.from_inside);
     const std::optional<EmitterDirection> sample =
         emitter.sample_direction(interaction.hit.point, view, u_direction);
-    if (!sample || !(sample->pdf > 0.0f)) return Color(0.0f);
+    if (!sample || !(sample->pdf > 0.0f)) return std::nullopt;
     const Color reflected = material.evaluate(sample->direction);
-    if (reflected == Color(0.0f)) return Color(0.0f);
-    // Visible if the first sphere along the direction is the emitter itself: a shadow ray
-    // with the emitter's distance as its end would have to beat the rounding of that distance.
-    const std::optional<SphereHit> hit =
-        closest_hit(continue_ray(interaction, sample->direction), counters);
-    if (!hit || hit->sphere != emitter.sphere) return Color(0.0f);
+    if (reflected == Color(0.0f)) return std::nullopt;
     const float light_pdf = choice.probability * sample->pdf;
     const float weight = C::light_sampling::light_weight(light_pdf, bounce_pdf(sample->direction));
-    return reflected * emitter.radiance * (weight / light_pdf);
+    return EmitterRay{continue_ray(interaction, sample->direction), emitter.sphere,
+                      reflected * emitter.radiance * (weight / light_pdf)};
   }
 
   /// Russian roulette: none if the path ends here, otherwise the weight 1/p that keeps the
