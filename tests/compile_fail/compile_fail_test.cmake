@@ -8,3 +8,16 @@ add_test(NAME "compile-fail: a wrong policy names its concept"
           -DTARGET=glint-compile-fail-wrong-policy -DCONCEPT=Fresnel
           -P ${CMAKE_CURRENT_LIST_DIR}/expect_build_failure.cmake)
 set_tests_properties("compile-fail: a wrong policy names its concept" PROPERTIES LABELS compile)
+
+# The wavefront renderer follows one path per sample: the report's tree model is refused with
+# WavefrontExecution's one message.
+add_executable(glint-compile-fail-wavefront-tree EXCLUDE_FROM_ALL
+  ${CMAKE_CURRENT_LIST_DIR}/wavefront_tree.cpp)
+target_link_libraries(glint-compile-fail-wavefront-tree PRIVATE glint::glint)
+add_test(NAME "compile-fail: the wavefront renderer refuses the tree model"
+  COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR}
+          -DTARGET=glint-compile-fail-wavefront-tree
+          "-DMESSAGE=WavefrontRenderer renders chain configurations only"
+          -P ${CMAKE_CURRENT_LIST_DIR}/expect_build_failure.cmake)
+set_tests_properties("compile-fail: the wavefront renderer refuses the tree model"
+  PROPERTIES LABELS compile)

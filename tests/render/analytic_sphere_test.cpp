@@ -9,6 +9,7 @@
 
 #include "glint/render/renderer.hpp"
 #include "glint/variants.hpp"
+#include "renderer_types.hpp"
 
 namespace {
 
@@ -36,7 +37,8 @@ double expected_radiance(double radius, double albedo, double intensity, int max
   return direct * (1.0 - std::pow(albedo, max_depth + 1)) / (1.0 - albedo);
 }
 
-template <typename Variant>
+/// The mean over the image of renderer R (a Renderer or a WavefrontRenderer).
+template <typename R>
 double mean_radiance(const glint::Scene& scene, int spp, int max_depth, double& standard_error) {
   glint::RenderSettings settings;
   settings.width = 16;
@@ -45,7 +47,7 @@ double mean_radiance(const glint::Scene& scene, int spp, int max_depth, double& 
   settings.max_depth = max_depth;
   settings.threads = 2;
   settings.seed = 7;
-  const glint::RenderResult result = glint::Renderer<Variant>::render(scene, settings);
+  const glint::RenderResult result = R::render(scene, settings);
   REQUIRE(result.stats.invalid_samples == 0);
   double sum = 0.0, sum2 = 0.0;
   for (const glint::Color& c : result.film.pixels()) {
@@ -64,7 +66,7 @@ double mean_radiance(const glint::Scene& scene, int spp, int max_depth, double& 
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("a lit closed diffuse sphere shows rho I / (pi R^2 (1 - rho))",
-                        "[render][analytic]", glint::variants::all) {
+                        "[render][analytic]", glint_test::AllRenderers) {
   const float radius = 10.0f, albedo = 0.5f, intensity = 400.0f;
   const glint::Scene scene = glint::Scene::build(lit_sphere_interior(radius, albedo, intensity));
 

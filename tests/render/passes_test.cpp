@@ -19,6 +19,7 @@
 
 #include "glint/render/renderer.hpp"
 #include "glint/render/tile_grid.hpp"
+#include "glint/render/wavefront/wavefront_renderer.hpp"
 #include "glint/variants.hpp"
 #include "small_scene.hpp"
 
@@ -258,10 +259,12 @@ TEST_CASE("a callback that throws ends the render and reaches the caller", "[pas
 }
 
 TEMPLATE_TEST_CASE("a render resumed after k passes ends bit for bit as an uninterrupted one",
-                   "[passes][resume]", glint::variants::report, glint::variants::fast) {
+                   "[passes][resume]", glint::Renderer<glint::variants::report>,
+                   glint::Renderer<glint::variants::fast>,
+                   glint::WavefrontRenderer<glint::variants::fast>) {
   const glint::Scene scene = small_scene();
   const glint::RenderSettings base = small_settings(13, 4, 2, 8);  // passes end 1 2 4 8 12 13
-  const glint::Film full = glint::Renderer<TestType>::render(scene, base).film;
+  const glint::Film full = TestType::render(scene, base).film;
   const int passes = GENERATE(1, 2, 3, 5, 6);
   INFO("resumed after pass " << passes);
 
@@ -272,7 +275,7 @@ TEMPLATE_TEST_CASE("a render resumed after k passes ends bit for bit as an unint
     sums = r.sums;
     return r.passes_done < passes;
   };
-  glint::Renderer<TestType>::render(scene, base, first);
+  TestType::render(scene, base, first);
   REQUIRE(sums.width() == 19);
 
   for (const int threads : {1, 2, 5}) {
@@ -287,8 +290,7 @@ TEMPLATE_TEST_CASE("a render resumed after k passes ends bit for bit as an unint
     };
     std::uint64_t at_start = 0;
     control.progress = [&](const glint::RenderProgress& p) { at_start = p.samples_at_start; };
-    const glint::RenderResult result =
-        glint::Renderer<TestType>::render(scene, settings, control, {&sums, passes});
+    const glint::RenderResult result = TestType::render(scene, settings, control, {&sums, passes});
     CHECK(result.complete());
     CHECK(result.passes_done == 6);
     CHECK(result.samples_per_pixel == 13);
@@ -365,10 +367,12 @@ TEST_CASE("the tile grid covers the image once, row by row", "[render_tiles]") {
 }
 
 TEMPLATE_TEST_CASE("render_tiles, tile by tile in any order over two sets of sums, is render()",
-                   "[render_tiles]", glint::variants::report, glint::variants::fast) {
+                   "[render_tiles]", glint::Renderer<glint::variants::report>,
+                   glint::Renderer<glint::variants::fast>,
+                   glint::WavefrontRenderer<glint::variants::fast>) {
   const glint::Scene scene = small_scene();
   const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
-  const glint::RenderResult whole = glint::Renderer<TestType>::render(scene, settings);
+  const glint::RenderResult whole = TestType::render(scene, settings);
   const glint::TileGrid grid(settings);
   const std::vector<int> ends = glint::pass_ends(13, 4);  // 1 2 4 8 12 13
 
@@ -392,8 +396,8 @@ TEMPLATE_TEST_CASE("render_tiles, tile by tile in any order over two sets of sum
     }
     for (int p = 0; p < 2; ++p) {
       ListSource source(work[p]);
-      const glint::RenderStats stats = glint::Renderer<TestType>::render_tiles(
-          scene, small_settings(13, 4, p + 1, 8), sums[p], source);
+      const glint::RenderStats stats =
+          TestType::render_tiles(scene, small_settings(13, 4, p + 1, 8), sums[p], source);
       CHECK(source.finished_ids().size() == work[p].size());
       CHECK(stats.threads == std::min<int>(p + 1, int(grid.count)));
       samples += stats.samples;

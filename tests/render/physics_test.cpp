@@ -12,6 +12,7 @@
 
 #include "glint/render/renderer.hpp"
 #include "glint/variants.hpp"
+#include "renderer_types.hpp"
 
 using glint::Color;
 using glint::Vec3;
@@ -68,10 +69,12 @@ glint::RenderSettings settings(int width, int height, int spp, int max_depth) {
   return s;
 }
 
-template <typename Variant>
+/// The image of renderer R (a Renderer or a WavefrontRenderer).
+template <typename R>
 glint::Film render(const glint::SceneDescription& description, const glint::RenderSettings& s) {
   const glint::Scene scene = glint::Scene::build(description);
-  const glint::RenderResult result = glint::Renderer<Variant>::render(scene, s);
+  INFO(glint_test::renderer_name<R>());
+  const glint::RenderResult result = R::render(scene, s);
   CHECK(result.stats.invalid_samples == 0);
   return result.film;
 }
@@ -99,7 +102,7 @@ void check_every_pixel(const glint::Film& film, Color expected) {
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("renders are bit-identical for 1, 2 and 5 threads", "[render][physics]",
-                        glint::variants::all) {
+                        glint_test::AllRenderers) {
   // A bit of everything: a lit diffuse floor, octant shading, glass, a mirror, an emitter.
   glint::SceneDescription scene = empty_scene({0.0f, 4.0f, 14.0f}, {0.0f, 1.0f, 0.0f}, 50.0f);
   scene.background = Color(0.05f, 0.1f, 0.2f);
@@ -128,7 +131,7 @@ TEMPLATE_LIST_TEST_CASE("renders are bit-identical for 1, 2 and 5 threads", "[re
 }
 
 TEMPLATE_LIST_TEST_CASE("hard shadows: opaque and glass blockers stop all direct light",
-                        "[render][physics]", glint::variants::all) {
+                        "[render][physics]", glint_test::AllRenderers) {
   // A diffuse floor (the top of a big sphere, at y = 0) lit by a point light 10 above the
   // origin; the camera sees a small patch around the origin.
   glint::SceneDescription scene = empty_scene({0.0f, 3.0f, 6.0f}, {0.0f, 0.0f, 0.0f}, 0.5f);
@@ -163,7 +166,7 @@ TEMPLATE_LIST_TEST_CASE("hard shadows: opaque and glass blockers stop all direct
 }
 
 TEMPLATE_LIST_TEST_CASE("two-sided diffuse: inside shades like outside", "[render][physics]",
-                        glint::variants::all) {
+                        glint_test::AllRenderers) {
   // The camera looks at P = (0, 0, 10) on a sphere of radius 10, from outside or from inside.
   // A light at distance d = 8 from P, at 60 degrees from the normal on the camera's side, gives
   // radiance rho I cos(60) / (pi d^2) either way (direct light only).
@@ -198,7 +201,7 @@ TEMPLATE_LIST_TEST_CASE("two-sided diffuse: inside shades like outside", "[rende
 }
 
 TEMPLATE_LIST_TEST_CASE("an emissive sphere shows its emission from outside and inside",
-                        "[render][physics]", glint::variants::all) {
+                        "[render][physics]", glint_test::AllRenderers) {
   // Emission with few mantissa bits, so that averaging 4 equal samples is exact.
   const Color emission(0.25f, 1.5f, 3.0f);
   glint::SceneDescription scene = empty_scene({0.0f, 0.0f, 20.0f}, Vec3(0.0f), 10.0f);
@@ -211,7 +214,7 @@ TEMPLATE_LIST_TEST_CASE("an emissive sphere shows its emission from outside and 
 }
 
 TEMPLATE_LIST_TEST_CASE("a mirror sphere in a uniform emissive enclosure shows c Le",
-                        "[render][physics]", glint::variants::all) {
+                        "[render][physics]", glint_test::AllRenderers) {
   const Color le(2.0f, 4.0f, 1.0f), c(0.5f, 0.25f, 0.75f);
   glint::SceneDescription scene = empty_scene({0.0f, 0.0f, 40.0f}, Vec3(0.0f), 6.0f);
   add_sphere(scene, Vec3(0.0f), 100.0f).material = emitter(le);
@@ -238,13 +241,13 @@ TEST_CASE("glass without Fresnel in a uniform enclosure transmits Le times colou
   glint::SceneDescription scene = empty_scene({0.0f, 0.0f, 50.0f}, Vec3(0.0f), 10.0f);
   add_sphere(scene, Vec3(0.0f), 100.0f).material = emitter(le);
   add_sphere(scene, Vec3(0.0f), 10.0f).material = glass_material(1.5f, tc);
-  check_every_pixel(render<Variant>(scene, settings(8, 8, 4, 4)), tc * tc * le);
+  check_every_pixel(render<glint::Renderer<Variant>>(scene, settings(8, 8, 4, 4)), tc * tc * le);
   // One crossing allowed: the ray inside the glass is not followed.
-  check_every_pixel(render<Variant>(scene, settings(8, 8, 4, 1)), Color(0.0f));
+  check_every_pixel(render<glint::Renderer<Variant>>(scene, settings(8, 8, 4, 1)), Color(0.0f));
 }
 
 TEMPLATE_LIST_TEST_CASE("clear glass in a uniform enclosure conserves energy", "[render][physics]",
-                        glint::variants::all) {
+                        glint_test::AllRenderers) {
   // Reflected or refracted, with or without Fresnel, every path ends on the enclosure: Le.
   // Exact per sample with a fixed depth; with Russian roulette exact in expectation.
   const Color le(1.0f, 2.0f, 0.5f);
@@ -253,7 +256,7 @@ TEMPLATE_LIST_TEST_CASE("clear glass in a uniform enclosure conserves energy", "
   add_sphere(scene, Vec3(0.0f), 10.0f).material = glass_material(1.5f);
   add_sphere(scene, {0.0f, 0.0f, -4.0f}, 3.0f).material = glass_material(1.0f);  // a bubble
   const glint::Film film = render<TestType>(scene, settings(8, 8, 8, 64));
-  if constexpr (!TestType::path_termination::uses_roulette) {
+  if constexpr (!TestType::Config::path_termination::uses_roulette) {
     check_every_pixel(film, le);
   } else {
     double sum = 0.0, sum2 = 0.0;
@@ -349,12 +352,12 @@ TEST_CASE("refraction through glass inside glass uses the inclusion tree's index
         .material = emitter(target_emission);
     glint::RenderSettings s = settings(1, 1, 4, 8);
     s.antialias_sigma = 0.0f;
-    check_every_pixel(render<Variant>(scene, s), target_emission);
+    check_every_pixel(render<glint::Renderer<Variant>>(scene, s), target_emission);
   }
 }
 
 TEMPLATE_LIST_TEST_CASE("the near clipping plane hides what is in front of it", "[render][physics]",
-                        glint::variants::all) {
+                        glint_test::AllRenderers) {
   // From z = 20 looking down the axis: a red sphere spanning t in [4, 6], a blue one spanning
   // t in [17, 23], then the background.
   const Color red(1.0f, 0.0f, 0.0f), blue(0.0f, 0.0f, 1.0f), green(0.0f, 0.5f, 0.0f);

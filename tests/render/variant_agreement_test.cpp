@@ -14,6 +14,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "block_statistics.hpp"
 #include "glint/io/scene_reader.hpp"
 #include "glint/render/renderer.hpp"
 #include "glint/variants.hpp"
@@ -39,53 +40,11 @@ sphere     center=-9,7,-6 radius=4 color=0.9,0.9,0.9 shading=octants
 sphere     center=0,19,0 radius=2 diffuse=0 emission=6,6,5
 )";
 
-constexpr int kSeeds = 8;
-constexpr int kBlock = 4;
-constexpr int kBlocksPerSide = 4;
-
-struct BlockStatistics {
-  std::array<double, kBlocksPerSide * kBlocksPerSide> mean{};
-  std::array<double, kBlocksPerSide * kBlocksPerSide> standard_error{};
-};
-
-template <typename Variant>
-BlockStatistics render_blocks(const glint::Scene& scene) {
-  std::array<std::vector<double>, kBlocksPerSide * kBlocksPerSide> per_seed;
-  glint::RenderSettings settings = glint::RenderSettings::from(scene);
-  settings.threads = 2;
-  for (int seed = 0; seed < kSeeds; ++seed) {
-    settings.seed = std::uint64_t(seed) + 100;
-    const glint::RenderResult result = glint::Renderer<Variant>::render(scene, settings);
-    REQUIRE(result.stats.invalid_samples == 0);
-    std::array<double, kBlocksPerSide * kBlocksPerSide> sums{};
-    for (int y = 0; y < settings.height; ++y)
-      for (int x = 0; x < settings.width; ++x) {
-        const glint::Color& c = result.film.at(x, y);
-        sums[std::size_t((y / kBlock) * kBlocksPerSide + x / kBlock)] += c.x + c.y + c.z;
-      }
-    for (std::size_t b = 0; b < sums.size(); ++b)
-      per_seed[b].push_back(sums[b] / (kBlock * kBlock));
-  }
-  BlockStatistics stats;
-  for (std::size_t b = 0; b < per_seed.size(); ++b) {
-    double sum = 0.0, sum2 = 0.0;
-    for (const double v : per_seed[b]) {
-      sum += v;
-      sum2 += v * v;
-    }
-    const double mean = sum / kSeeds;
-    const double variance = std::max(0.0, (sum2 - kSeeds * mean * mean) / (kSeeds - 1));
-    stats.mean[b] = mean;
-    stats.standard_error[b] = std::sqrt(variance / kSeeds);
-  }
-  return stats;
-}
-
 /// The shared scene, or (for variants whose shading policy lacks octants) the same scene with
 /// that sphere uniformly coloured; each with report's statistics on it.
 struct SceneAndReference {
   glint::Scene scene;
-  BlockStatistics report;
+  glint_test::BlockStatistics report;
 };
 
 const SceneAndReference& shared_scene(bool with_octants) {
@@ -94,7 +53,8 @@ const SceneAndReference& shared_scene(bool with_octants) {
     if (!octants)
       text.replace(text.find(" shading=octants"), std::string(" shading=octants").size(), "");
     glint::Scene scene = glint::Scene::build(glint::read_scene_text(text, "agreement"));
-    BlockStatistics report = render_blocks<glint::variants::report>(scene);
+    glint_test::BlockStatistics report =
+        glint_test::render_blocks<glint::Renderer<glint::variants::report>>(scene, 100);
     return SceneAndReference{std::move(scene), report};
   };
   static const SceneAndReference with = make(true);
@@ -118,18 +78,10 @@ TEMPLATE_LIST_TEST_CASE("variants that claim report's image converge to it",
   const bool octants = glint::is_supported<TestType>(shared_scene(true).scene);
   INFO(TestType::info.name << (octants ? "" : ", on the scene without octant shading"));
   const SceneAndReference& shared = shared_scene(octants);
-  const BlockStatistics& reference = shared.report;
-  const BlockStatistics candidate = render_blocks<TestType>(shared.scene);
-  double total_reference = 0.0;
-  for (std::size_t b = 0; b < reference.mean.size(); ++b) {
-    const double tolerance =
-        5.0 * std::hypot(reference.standard_error[b], candidate.standard_error[b]) +
-        1e-4 * reference.mean[b];
-    INFO("block " << b << ": report " << reference.mean[b] << " +- " << reference.standard_error[b]
-                  << ", variant " << candidate.mean[b] << " +- " << candidate.standard_error[b]);
-    CHECK(std::abs(candidate.mean[b] - reference.mean[b]) <= tolerance);
-    total_reference += reference.mean[b];
-  }
+  const glint_test::BlockStatistics& reference = shared.report;
+  const glint_test::BlockStatistics candidate =
+      glint_test::render_blocks<glint::Renderer<TestType>>(shared.scene, 100);
+  const double total_reference = glint_test::check_blocks_agree(reference, candidate);
   CHECK(total_reference > 1.0);  // the scene is lit: the comparison is not between zeros
 }
 

@@ -150,6 +150,7 @@ void check_supported(const Scene& scene) {
 template <RenderConfig C, Execution E = ScalarExecution<C>>
 class Renderer {
  public:
+  using Config = C;
   using ExecutionModel = E;
 
   /// The longest the progress callback waits while rendering: progress and the time left keep

@@ -1,0 +1,188 @@
+// The wavefront execution model against the scalar one. WavefrontRenderer<V> must estimate the
+// same image as Renderer<V> for every chain variant: block by block within five standard
+// errors, with independent seeds, on the bench scenes and the report's scenes; and with the
+// same seed it must follow the same paths (the same draws, the same hits), so the images
+// agree pixel by pixel up to the rounding of where light is added. Its own bookkeeping (the
+// batch refilled from the next samples, the window of samples waiting to be added to their
+// pixels, tiles and passes) must not change a bit of the image. The physical checks
+// (analytic_sphere_test, physics_test) and the pass and tile tests (passes_test) also run it.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <tuple>
+#include <type_traits>
+#include <vector>
+
+#include "block_statistics.hpp"
+#include "glint/io/scene_reader.hpp"
+#include "glint/render/renderer.hpp"
+#include "glint/render/wavefront/wavefront_renderer.hpp"
+#include "glint/variants.hpp"
+#include "renderer_types.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Every named chain variant, the ones WavefrontRenderer renders.
+template <typename... V>
+auto chain_variants(std::tuple<V...>*) -> decltype(std::tuple_cat(
+    std::conditional_t<glint::WavefrontConfig<V>, std::tuple<V>, std::tuple<>>{}...));
+using ChainVariants = decltype(chain_variants(static_cast<glint::variants::all*>(nullptr)));
+static_assert(std::tuple_size_v<ChainVariants> >= 3);
+
+/// The bench scenes and the report's scenes, sorted by name.
+std::vector<fs::path> comparison_scenes() {
+  std::vector<fs::path> files;
+  for (const char* dir : {GLINT_SOURCE_DIR "/bench/scenes", GLINT_SOURCE_DIR "/scenes"})
+    for (const auto& entry : fs::directory_iterator(dir))
+      if (entry.is_regular_file() && entry.path().extension() == ".scene")
+        files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+bool same_bits(const glint::Film& a, const glint::Film& b) {
+  return a.width() == b.width() && a.height() == b.height() &&
+         std::memcmp(a.pixels().data(), b.pixels().data(),
+                     a.pixels().size() * sizeof(glint::Color)) == 0;
+}
+
+const char* const kMixedScene = R"(
+image      width=16 height=16 spp=16 max_depth=6
+camera     position=0,0,38 look_at=0,0,0 up=0,1,0 fov=55
+light      position=-8,14,20 intensity=1500
+light      position=8,-10,25 intensity=300 color=0.5,0.6,1
+sphere     center=-100020,0,0 radius=100000 color=0.8,0.3,0.3
+sphere     center=100020,0,0 radius=100000 color=0.3,0.8,0.3
+sphere     center=0,-100015,0 radius=100000 color=0.7,0.7,0.7
+sphere     center=0,100020,0 radius=100000 color=0.7,0.7,0.7
+sphere     center=0,0,-100020 radius=100000 color=0.7,0.7,0.7
+sphere     center=0,0,100040 radius=100000 color=0.2,0.2,0.2
+sphere     center=-9,-8,0 radius=6 transparent=1 ior=1.5
+sphere     center=0,-2,-10 radius=4 transparent=1 ior=1.0
+sphere     center=0,-2,-10 radius=7 transparent=1 ior=1.5
+sphere     center=9,-9,2 radius=5 mirror=1 mirror_color=0.9,0.9,0.8
+sphere     center=9,7,-6 radius=5 diffuse=0.33 color=0.2,0.2,0.9 mirror=0.33 mirror_color=0.2,0.9,0.2 transparent=0.33 transparent_color=0.9,0.2,0.2
+sphere     center=-9,7,-6 radius=4 color=0.9,0.9,0.9
+sphere     center=0,19,0 radius=2 diffuse=0 emission=6,6,5
+sphere     center=-4,12,4 radius=1 diffuse=0 emission=20,10,5
+)";
+
+glint::Scene mixed_scene() {
+  return glint::Scene::build(glint::read_scene_text(kMixedScene, "wavefront"));
+}
+
+}  // namespace
+
+TEMPLATE_LIST_TEST_CASE("wavefront and scalar renderers estimate the same image",
+                        "[render][statistical][wavefront]", ChainVariants) {
+  // Seeds 100.. for the scalar renderer and 200.. for the wavefront one: independent estimates.
+  std::vector<fs::path> files = comparison_scenes();
+  REQUIRE(files.size() >= 20);
+  for (const fs::path& file : files) {
+    const glint::Scene scene = glint::Scene::build(glint::read_scene_file(file.string()));
+    if (!glint::is_supported<TestType>(scene)) continue;
+    glint::RenderSettings settings = glint::RenderSettings::from(scene);
+    settings.samples_per_pixel = 16;
+    INFO(TestType::info.name << " on " << file.filename().string());
+    const glint_test::BlockStatistics scalar =
+        glint_test::render_blocks<glint::Renderer<TestType>>(scene, 100, settings);
+    const glint_test::BlockStatistics wavefront =
+        glint_test::render_blocks<glint::WavefrontRenderer<TestType>>(scene, 200, settings);
+    CHECK(glint_test::check_blocks_agree(scalar, wavefront) > 0.0);
+  }
+  const glint::Scene mixed = mixed_scene();
+  INFO(TestType::info.name << " on the mixed scene");
+  const double lit = glint_test::check_blocks_agree(
+      glint_test::render_blocks<glint::Renderer<TestType>>(mixed, 100),
+      glint_test::render_blocks<glint::WavefrontRenderer<TestType>>(mixed, 200));
+  CHECK(lit > 1.0);
+}
+
+TEMPLATE_LIST_TEST_CASE("with the same seed, the wavefront follows the scalar renderer's paths",
+                        "[render][wavefront]", ChainVariants) {
+  // The same draws and the same hits: a pixel can differ only by the rounding of the order in
+  // which light is added, which could tip a roulette or lobe choice in a rare path. So nearly
+  // every pixel agrees to a part in 10^4, and the rays traced agree in number to a part in 10^3.
+  const glint::Scene scene = mixed_scene();
+  glint::RenderSettings settings = glint::RenderSettings::from(scene);
+  settings.width = 24;
+  settings.height = 20;
+  settings.seed = 5;
+  settings.threads = 2;
+  const glint::RenderResult scalar = glint::Renderer<TestType>::render(scene, settings);
+  const glint::RenderResult wavefront = glint::WavefrontRenderer<TestType>::render(scene, settings);
+  REQUIRE(wavefront.stats.samples == scalar.stats.samples);
+  CHECK(wavefront.stats.invalid_samples == 0);
+  CHECK(std::abs(double(wavefront.stats.rays) - double(scalar.stats.rays)) <=
+        1e-3 * double(scalar.stats.rays));
+  std::size_t close = 0;
+  for (std::size_t i = 0; i < scalar.film.pixels().size(); ++i) {
+    const glint::Color& a = scalar.film.pixels()[i];
+    const glint::Color& b = wavefront.film.pixels()[i];
+    bool near = true;
+    for (int c = 0; c < 3; ++c)
+      near = near && std::abs(a[c] - b[c]) <= 1e-4f * std::max(1.0f, std::abs(a[c]));
+    close += near;
+  }
+  CHECK(double(close) >= 0.99 * double(scalar.film.pixels().size()));
+}
+
+TEST_CASE("the wavefront image depends neither on tiles nor on passes", "[render][wavefront]") {
+  // One pixel per tile with every sample in one pass starts far more samples than the window
+  // of samples waiting for their pixel holds; tiles cut at the image's edge and one sample per
+  // pass leave most batches nearly empty. All must give the same bits.
+  using V = glint::variants::fast;
+  const glint::Scene scene = mixed_scene();
+  glint::RenderSettings base = glint::RenderSettings::from(scene);
+  base.width = 7;
+  base.height = 5;
+  base.samples_per_pixel = 1500;
+  base.max_depth = 4;
+  base.seed = 11;
+  base.threads = 2;
+  const glint::Film reference = glint::WavefrontRenderer<V>::render(scene, base).film;
+  glint::RenderSettings one_pixel_tiles = base;
+  one_pixel_tiles.tile_size = 1;
+  one_pixel_tiles.max_pass_samples = 1500;
+  CHECK(same_bits(glint::WavefrontRenderer<V>::render(scene, one_pixel_tiles).film, reference));
+  glint::RenderSettings ragged = base;
+  ragged.tile_size = 3;
+  ragged.max_pass_samples = 1;
+  ragged.samples_per_pixel = 1500;
+  ragged.threads = 3;
+  CHECK(same_bits(glint::WavefrontRenderer<V>::render(scene, ragged).film, reference));
+}
+
+TEST_CASE("the wavefront counts and drops samples that are not finite as the scalar renderer does",
+          "[render][wavefront]") {
+  // Inside an enclosure that emits 3e38, a mirror that also emits 3e38 returns 3e38 + 3e38:
+  // infinite. Pixels that see only the enclosure are finite.
+  const glint::Scene scene = glint::Scene::build(glint::read_scene_text(R"(
+image      width=12 height=12 spp=8 max_depth=3
+camera     position=0,0,30 look_at=0,0,0 up=0,1,0 fov=60
+sphere     center=0,0,0 radius=100 diffuse=0 emission=3e38,3e38,3e38
+sphere     center=0,0,0 radius=8 diffuse=0 mirror=1 emission=3e38,3e38,3e38
+)",
+                                                                        "overflow"));
+  using V = glint::variants::fast;
+  const glint::RenderSettings settings = glint::RenderSettings::from(scene);
+  const glint::RenderResult scalar = glint::Renderer<V>::render(scene, settings);
+  const glint::RenderResult wavefront = glint::WavefrontRenderer<V>::render(scene, settings);
+  CHECK(scalar.stats.invalid_samples > 0);
+  CHECK(scalar.stats.invalid_samples < scalar.stats.samples);
+  CHECK(wavefront.stats.invalid_samples == scalar.stats.invalid_samples);
+  CHECK(same_bits(wavefront.film, scalar.film));
+}
+
+TEST_CASE("the renderer types the tests run include every chain variant's wavefront renderer",
+          "[wavefront]") {
+  STATIC_REQUIRE(std::tuple_size_v<glint_test::AllRenderers> ==
+                 std::tuple_size_v<glint::variants::all> + std::tuple_size_v<ChainVariants>);
+  STATIC_REQUIRE(glint::WavefrontConfig<glint::variants::fast>);
+  STATIC_REQUIRE_FALSE(glint::WavefrontConfig<glint::variants::report>);
+}
