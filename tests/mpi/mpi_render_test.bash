@@ -46,7 +46,7 @@ case_same_bytes() { # RANKS THREADS
     --hdr many.pfm 2>err.log || fail "glint-render-mpi failed (status $?)"
   cmp one.png many.png || fail "the PNG differs from glint-render's"
   cmp one.pfm many.pfm || fail "the PFM differs from glint-render's"
-  local summary="^glint-render-mpi \([a-z_]+\): .*lamp-room\.scene -> many\.png: 72x56, 13 spp, depth 8 in [0-9.]+ s on $1 ranks? x $2 threads: "
+  local summary="^glint-render-mpi \([a-z_]+, [a-z]+\): .*lamp-room\.scene -> many\.png: 72x56, 13 spp, depth 8 in [0-9.]+ s on $1 ranks? x $2 threads: "
   grep -Eq "$summary" err.log || fail "no summary line naming $1 ranks x $2 threads"
   grep -Eq "^glint-render-mpi: idle: rank 0 [0-9.]+ s \([0-9]+%\)" err.log || fail "no idle line"
   no_temporaries
