@@ -36,8 +36,9 @@ first SIGINT, SIGTERM or SIGHUP stops after the current pass and writes the imag
 passes done, saying how many samples per pixel it holds; a second one exits at once.
 Outputs are checked before rendering and written to new temporary files beside them, renamed
 into place only when all were written.
-Exit status: 0 on success (--time-limit included), 1 for a bad scene, an unwritable output or
-a checkpoint that cannot be resumed, 2 for bad options,
+Exit status: 0 on success (--time-limit included), 1 for a bad scene, an unwritable output,
+a checkpoint that cannot be resumed or a CPU without an instruction set this build uses,
+2 for bad options,
 3 for a valid scene that this variant cannot render (a shading kind it was built without),
 128 + the signal's number when a signal stopped the render (130 for SIGINT).
 )",
