@@ -1,7 +1,12 @@
 // Whole-render cost of every named variant (glint::variants::all) on the small scenes of
-// bench/scenes: one benchmark per (scene, variant), each iteration one 64x64 frame at 4 spp,
-// depth 12, on one worker thread. Compare a variant with `report` on the same scene; the
-// quality side of the trade (error at equal time and at equal samples) is bench/run-all's.
+// bench/scenes: one benchmark per (scene, variant, execution model), each iteration one 64x64
+// frame at 4 spp, depth 12, on one worker thread. Compare a variant with `report` on the same
+// scene; the quality side of the trade (error at equal time and at equal samples) is
+// bench/run-all's.
+//
+// Names: render/SCENE/VARIANT/MODEL, MODEL `scalar` (Renderer) for every variant and, next to it
+// in the same run, `wavefront` (WavefrontRenderer) for each chain variant (WavefrontConfig), so
+// that bench/run-all pairs them by name.
 //
 //   glint-variants-bench [--scenes=DIR] --benchmark_out=variants.json --benchmark_out_format=json
 //
@@ -50,12 +55,13 @@ struct NamedScene {
   glint::Scene scene;
 };
 
-template <typename V>
+/// Renders frames with `Renderer` (Renderer<V> or WavefrontRenderer<V>).
+template <typename Renderer>
 void render_frames(benchmark::State& state, const glint::Scene& scene) {
   const glint::RenderSettings settings = frame_settings();
   glint::RenderStats stats;
   for (auto _ : state) {
-    glint::RenderResult result = glint::Renderer<V>::render(scene, settings);
+    glint::RenderResult result = Renderer::render(scene, settings);
     benchmark::DoNotOptimize(result.film.pixels().data());
     stats = result.stats;
   }
@@ -70,6 +76,17 @@ void render_frames(benchmark::State& state, const glint::Scene& scene) {
   state.counters["rays_per_frame"] = double(stats.rays);
 }
 
+/// Registers render/SCENE/VARIANT/MODEL, rendering with `Renderer`.
+template <typename Renderer>
+void register_render(const std::string& name, const glint::Scene* scene) {
+  benchmark::RegisterBenchmark(
+      name.c_str(), [scene](benchmark::State& state) { render_frames<Renderer>(state, *scene); })
+      // The renderer's worker thread does the work while this thread waits: the default
+      // (this thread's CPU time) would count nothing.
+      ->MeasureProcessCPUTime()
+      ->Unit(benchmark::kMillisecond);
+}
+
 template <glint::NamedVariant V>
 void register_variant(const std::deque<NamedScene>& scenes) {
   const std::string name(V::info.name);
@@ -81,14 +98,10 @@ void register_variant(const std::deque<NamedScene>& scenes) {
                    name.c_str(), s.name.c_str());
       continue;
     }
-    const glint::Scene* scene = &s.scene;
-    benchmark::RegisterBenchmark(
-        ("render/" + s.name + "/" + name).c_str(),
-        [scene](benchmark::State& state) { render_frames<V>(state, *scene); })
-        // The renderer's worker thread does the work while this thread waits: the default
-        // (this thread's CPU time) would count nothing.
-        ->MeasureProcessCPUTime()
-        ->Unit(benchmark::kMillisecond);
+    const std::string prefix = "render/" + s.name + "/" + name + "/";
+    register_render<glint::Renderer<V>>(prefix + "scalar", &s.scene);
+    if constexpr (glint::WavefrontConfig<V>)
+      register_render<glint::WavefrontRenderer<V>>(prefix + "wavefront", &s.scene);
   }
 }
 

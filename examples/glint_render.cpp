@@ -1,7 +1,8 @@
 // glint-render: renders a scene file with one renderer variant, chosen when this file is
 // compiled (GLINT_VARIANT names a type of glint::variants, e.g. -DGLINT_VARIANT=report). One
-// executable per variant keeps each translation unit to a single instantiation of the renderer.
-// Its options, outputs, signals and checkpoints are render_command.hpp's, shared with
+// executable per variant keeps each translation unit to a single variant (with its two renderers
+// for a chain variant: the wavefront one by default, the scalar one with --scalar). Its options,
+// outputs, signals, checkpoints and execution model are render_command.hpp's, shared with
 // glint-render-mpi.
 
 #include <csignal>
@@ -35,8 +36,9 @@ first SIGINT, SIGTERM or SIGHUP stops after the current pass and writes the imag
 passes done, saying how many samples per pixel it holds; a second one exits at once.
 Outputs are checked before rendering and written to new temporary files beside them, renamed
 into place only when all were written.
-Exit status: 0 on success (--time-limit included), 1 for a bad scene, an unwritable output or
-a checkpoint that cannot be resumed, 2 for bad options,
+Exit status: 0 on success (--time-limit included), 1 for a bad scene, an unwritable output,
+a checkpoint that cannot be resumed or a CPU without an instruction set this build uses,
+2 for bad options,
 3 for a valid scene that this variant cannot render (a shading kind it was built without),
 128 + the signal's number when a signal stopped the render (130 for SIGINT).
 )",
@@ -77,7 +79,9 @@ int main(int argc, char** argv) {
     const glint::RenderControl control{cli::ProgressPrinter(!options.quiet), keeper.callback(),
                                        &cli::stop_requested};
     const glint::RenderResult result =
-        glint::Renderer<Variant>::render(scene, settings, control, keeper.start());
+        cli::with_renderer<Variant>(cli::execution_model(options), [&]<typename Renderer>() {
+          return Renderer::render(scene, settings, control, keeper.start());
+        });
     return cli::finish_run(kProgram, options, output, settings, result, keeper,
                            {std::to_string(result.stats.threads) + " threads", ""});
   } catch (...) {

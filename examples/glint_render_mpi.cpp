@@ -1,8 +1,9 @@
 // glint-render-mpi: glint-render on several processes, with MPI (`mpirun -n N glint-render-mpi
 // SCENE [options]`), writing the image glint-render writes with the same options, bit for bit.
-// Built for the default variant only (GLINT_VARIANT, as glint-render).
+// Built for the default variant only (GLINT_VARIANT, as glint-render), with its wavefront
+// renderer by default and its scalar one with --scalar (render_command.hpp's with_renderer).
 //
-// Every rank renders with all its threads (Renderer::render_tiles); rank 0 also schedules,
+// Every rank renders with all its threads (render_tiles); rank 0 also schedules,
 // gathers and writes. The render is glint-render's passes. A pixel's sum must grow sample by
 // sample in index order across passes, so whoever renders a tile in a pass starts from the sums
 // that tile had after the pass before. Rank 0 hands out tiles (tile_scheduler.hpp): each rank
@@ -81,9 +82,9 @@ into place only when all were written, after every rank has ended its work: a ra
 makes mpirun end the run, and no image is written.
 Exit status (rank 0's, which mpirun returns unless it was signalled itself): 0 on success
 (--time-limit included), 1 for a bad scene, an unwritable output, a checkpoint that cannot be
-resumed or a rank that failed, 2 for bad options, 3 for a valid scene that this variant cannot
-render (a shading kind it was built without), 128 + the signal's number when a signal stopped
-the render (138 for SIGUSR1).
+resumed, a CPU without an instruction set this build uses or a rank that failed, 2 for bad
+options, 3 for a valid scene that this variant cannot render (a shading kind it was built
+without), 128 + the signal's number when a signal stopped the render (138 for SIGUSR1).
 )",
     Variant::info.name};
 
@@ -357,17 +358,19 @@ std::string scene_text(const World& world, const cli::Options& options, const Mp
 
 // --- The render ---------------------------------------------------------------------------
 
-/// One rank's rendering threads, running Renderer::render_tiles on a thread of their own, fed
-/// by a TileQueue.
+/// One rank's rendering threads, running the execution model's render_tiles on a thread of their
+/// own, fed by a TileQueue.
 class RankRenderer {
  public:
   RankRenderer(const glint::Scene& scene, const glint::RenderSettings& settings,
-               glint::PixelSums& sums)
+               glint::PixelSums& sums, cli::ExecutionModel model)
       : start_(Clock::now()),
         main_cpu_start_(thread_cpu_seconds()),
-        thread_([this, &scene, &settings, &sums] {
+        thread_([this, &scene, &settings, &sums, model] {
           try {
-            stats_ = glint::Renderer<Variant>::render_tiles(scene, settings, sums, queue_);
+            stats_ = cli::with_renderer<Variant>(model, [&]<typename Renderer>() {
+              return Renderer::render_tiles(scene, settings, sums, queue_);
+            });
           } catch (...) {
             failure_ = cli::current_failure(kProgram);
           }
@@ -882,7 +885,7 @@ int run(const World& world, int argc, char** argv) {
                              if (const glint::RenderStart start = keeper->start(); start.sums)
                                sums = *start.sums;
                            }
-                           renderer.emplace(*scene, settings, sums);
+                           renderer.emplace(*scene, settings, sums, cli::execution_model(options));
                            if (std::optional<cli::Failure> failure = renderer->started())
                              throw glint::Error(failure->message);
                          })))

@@ -21,6 +21,7 @@
 #include <variant>
 #include <vector>
 
+#include "cpu_check.hpp"  // before main: this CPU has what the build uses
 #include "glint/generate/random_scene.hpp"
 #include "glint/io/scene_writer.hpp"
 

@@ -2,9 +2,11 @@
 // What glint-render and glint-render-mpi share, so that both take the same options and keep the
 // same promises: the options, their parsing and the usage text; the checks of the outputs
 // before any rendering; outputs staged in temporaries that a second stop signal removes; the
-// stop signals; checkpoints (their key, the one resumed, the one written between passes) and
-// the time limit; and the end of a run: the files written together, the summary line, the
-// warnings and the exit status. Each program includes it once (one translation unit each).
+// stop signals; the execution model (wavefront or scalar) and the renderer it picks;
+// checkpoints (their key, the one resumed, the one written between passes) and the time limit;
+// and the end of a run: the files written together, the summary line, the warnings and the exit
+// status. Each program includes it once (one translation unit each), and with it the CPU check
+// (cpu_check.hpp), which runs before main.
 
 #include <pthread.h>
 #include <unistd.h>
@@ -30,6 +32,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cpu_check.hpp"
 #include "glint/glint.hpp"
 #include "glint/io/checkpoint.hpp"
 #include "load_progress.hpp"
@@ -62,6 +65,33 @@ struct Program {
   std::string_view variant;        ///< the renderer variant's name
 };
 
+// --- The execution model ------------------------------------------------------------------
+// A chain variant (glint::WavefrontConfig: one lobe per bounce) has two renderers with the same
+// interface: WavefrontRenderer, which advances batches of paths stage by stage, and Renderer,
+// one path at a time. Both estimate the same image, but not bit for bit (other float
+// operations in another order), so a run names the one it used and a checkpoint belongs to one.
+// Every other variant has only Renderer. Which renderer a run uses is decided here only.
+
+enum class ExecutionModel { scalar, wavefront };
+
+inline std::string_view to_string(ExecutionModel model) {
+  return model == ExecutionModel::wavefront ? "wavefront" : "scalar";
+}
+
+/// Whether this program's variant has the wavefront renderer.
+inline constexpr bool kVariantHasWavefront = glint::WavefrontConfig<Variant>;
+
+/// The renderer of variant V for `model`: `render.template operator()<R>()` with R
+/// WavefrontRenderer<V> or Renderer<V>, returning what it returns. A variant without the
+/// wavefront renderer always gets Renderer<V> (--scalar changes nothing there).
+template <glint::NamedVariant V, typename Render>
+decltype(auto) with_renderer(ExecutionModel model, Render&& render) {
+  if constexpr (glint::WavefrontConfig<V>)
+    if (model == ExecutionModel::wavefront)
+      return render.template operator()<glint::WavefrontRenderer<V>>();
+  return render.template operator()<glint::Renderer<V>>();
+}
+
 constexpr std::string_view kOptionsBeforeThreads = R"(options:
   -o, --output FILE   8-bit sRGB PNG to write, FILE ending in .png (default: SCENE's name
                       with .png, in the current directory)
@@ -82,21 +112,33 @@ constexpr std::string_view kOptionsBeforeThreads = R"(options:
 )";
 
 constexpr std::string_view kOptionsAfterThreads =
-    R"(  --seed N            random seed (default 0): same scene, settings and seed give the
-                      same image bit for bit
+    R"(  --seed N            random seed (default 0): same scene, settings, seed and execution
+                      model give the same image bit for bit
   --checkpoint FILE   save what --resume needs to continue the render to FILE: after a
                       pass, every --checkpoint-interval seconds, and at the end (finished,
                       stopped by a signal or by --time-limit)
   --checkpoint-interval SECONDS
                       least time between two checkpoints while rendering (default 60;
                       0: after every pass)
-  --resume FILE       continue the render saved in FILE (same scene file, variant and
-                      image options, seed included): the image is then exactly the one
-                      an uninterrupted render gives; a checkpoint of another render is
-                      refused (status 1) before any rendering
+  --resume FILE       continue the render saved in FILE (same scene file, variant,
+                      execution model and image options, seed included): the image is
+                      then exactly the one an uninterrupted render gives; a checkpoint of
+                      another render is refused (status 1) before any rendering
   --time-limit SECONDS
                       stop after the pass that ends past SECONDS of rendering and write
                       the image of the passes done (status 0, saying what it holds)
+)";
+
+/// --scalar's lines: what it does depends on whether the variant has the wavefront renderer.
+constexpr std::string_view kScalarHelp =
+    kVariantHasWavefront
+        ? R"(  --scalar            render with the scalar renderer (one path at a time) instead of
+                      the wavefront renderer (batches of paths, stage by stage; the
+                      default): the same image up to noise, but not bit for bit
+)"
+        : R"(  --scalar            accepted, and changes nothing: this variant has the scalar
+                      renderer only (the wavefront renderer is for the variants that
+                      follow one lobe per bounce)
 )";
 
 constexpr std::string_view kOptionsLast = R"(  --quiet             no progress or summary on stderr
@@ -107,8 +149,8 @@ inline std::string usage(const Program& program) {
   std::string text;
   for (const std::string_view part :
        {program.usage_line, std::string_view("\n\n"), program.description, std::string_view("\n\n"),
-        kOptionsBeforeThreads, program.threads_help, kOptionsAfterThreads, program.extra_options,
-        kOptionsLast, std::string_view("\n"), program.notes})
+        kOptionsBeforeThreads, program.threads_help, kScalarHelp, kOptionsAfterThreads,
+        program.extra_options, kOptionsLast, std::string_view("\n"), program.notes})
     text += part;
   return text;
 }
@@ -122,12 +164,25 @@ struct Options {
   bool exr_half = false;
   std::optional<int> spp, max_depth, width, height, threads;
   std::uint64_t seed = 0;
+  bool scalar = false;  ///< --scalar: Renderer, where the variant also has WavefrontRenderer
   std::optional<std::string> checkpoint, resume;
   double checkpoint_interval = 60.0;
   std::optional<double> time_limit;
   bool quiet = false;
   bool help = false;  ///< -h or --help: nothing after it was read
 };
+
+/// The run's execution model: wavefront where the variant has it, unless --scalar.
+inline ExecutionModel execution_model(const Options& options) {
+  return kVariantHasWavefront && !options.scalar ? ExecutionModel::wavefront
+                                                 : ExecutionModel::scalar;
+}
+
+/// The variant and execution model, as the summary line and the EXR header name them:
+/// "fast, wavefront", "report, scalar".
+inline std::string renderer_name(const Program& program, ExecutionModel model) {
+  return std::string(program.variant) + ", " + std::string(to_string(model));
+}
 
 /// A bad command line: status 2, the message followed by the usage.
 struct UsageError {
@@ -233,6 +288,8 @@ inline Options parse_options(int argc, char** argv, [[maybe_unused]] const Progr
       options.threads = parse_integer(arg, value(), 1, glint::limits::max_threads);
     } else if (arg == "--seed") {
       options.seed = parse_integer<std::uint64_t>(arg, value(), 0, UINT64_MAX);
+    } else if (arg == "--scalar") {
+      options.scalar = true;
     } else if (arg == "--checkpoint") {
       options.checkpoint = std::string(value());
     } else if (arg == "--checkpoint-interval") {
@@ -267,7 +324,10 @@ inline Options parse_options(int argc, char** argv, [[maybe_unused]] const Progr
 
 /// What --help prints on stdout.
 inline std::string help_text(const Program& program) {
-  return usage(program) + "\nvariant: " + std::string(program.variant) + "\n";
+  return usage(program) + "\nvariant: " + std::string(program.variant) + "\nexecution model: " +
+         (kVariantHasWavefront ? "wavefront (the default), or scalar with --scalar"
+                               : "scalar (this variant's only one)") +
+         "\n";
 }
 
 // --- Stop signals -------------------------------------------------------------------------
@@ -464,6 +524,29 @@ inline glint::RenderSettings render_settings(const Options& options, const glint
 
 // --- Checkpoints and the passes -----------------------------------------------------------
 
+/// The variant a checkpoint's key names: for the scalar renderer the variant's name alone, as
+/// before there was a wavefront renderer, so that those checkpoints still resume (with --scalar,
+/// bit for bit); for the wavefront renderer "NAME, wavefront", so that no checkpoint continues
+/// in the other execution model, whose image differs in its last bits.
+inline std::string checkpoint_variant(const Program& program, ExecutionModel model) {
+  return model == ExecutionModel::scalar ? std::string(program.variant)
+                                         : renderer_name(program, model);
+}
+
+/// Refuses a checkpoint of this variant's other execution model, saying so and how to resume
+/// it (check_checkpoint_matches would only show two variant names).
+inline void check_execution_model(const glint::Checkpoint& checkpoint, const Program& program,
+                                  ExecutionModel model, const std::string& file) {
+  const ExecutionModel other =
+      model == ExecutionModel::scalar ? ExecutionModel::wavefront : ExecutionModel::scalar;
+  if (checkpoint.key.variant != checkpoint_variant(program, other)) return;
+  throw glint::CheckpointError(
+      "cannot resume from " + file + ": it was made by the " + std::string(to_string(other)) +
+      " renderer, this render is " + std::string(to_string(model)) +
+      " (their images differ in the last bits): resume it " +
+      (other == ExecutionModel::scalar ? "with" : "without") + " --scalar");
+}
+
 /// The checkpoints of a run: the key its checkpoints carry, the checkpoint it resumes, and, kept
 /// by the pass callback, the state of the last completed pass for the checkpoint written at the
 /// end (whatever stops the render after it). Between passes it writes a checkpoint every
@@ -475,10 +558,12 @@ class PassKeeper {
   PassKeeper(const Program& program, const Options& options, const glint::RenderSettings& settings,
              std::uint64_t scene_hash)
       : program_(program), options_(options) {
+    const ExecutionModel model = execution_model(options);
     if (options.checkpoint || options.resume)
-      key_ = glint::CheckpointKey::of(scene_hash, program.variant, settings);
+      key_ = glint::CheckpointKey::of(scene_hash, checkpoint_variant(program, model), settings);
     if (options.resume) {
       resumed_ = glint::read_checkpoint(*options.resume);
+      check_execution_model(*resumed_, program, model, *options.resume);
       glint::check_checkpoint_matches(*resumed_, key_, *options.resume);
       last_sums_ = resumed_->sums;
       last_passes_ = resumed_->passes_done;
@@ -553,14 +638,16 @@ inline std::vector<glint::ExrAttribute> exr_attributes(const Program& program,
                                                        const glint::RenderSettings& settings,
                                                        const glint::RenderResult& result) {
   const std::string seed = std::to_string(settings.seed);
+  const ExecutionModel model = execution_model(options);
   const std::string comments =
-      std::string(program.name) + " " GLINT_VERSION " (" + std::string(program.variant) +
+      std::string(program.name) + " " GLINT_VERSION " (" + renderer_name(program, model) +
       "): " + options.scene + ", " + std::to_string(result.samples_per_pixel) + " of " +
       std::to_string(settings.samples_per_pixel) + " samples per pixel, max depth " +
       std::to_string(settings.max_depth) + ", seed " + seed;
   return {{"comments", comments},
           {"glint/version", std::string(GLINT_VERSION)},
           {"glint/variant", std::string(program.variant)},
+          {"glint/executionModel", std::string(to_string(model))},
           {"glint/scene", options.scene},
           {"glint/width", settings.width},
           {"glint/height", settings.height},
@@ -617,9 +704,10 @@ inline int finish_run(const Program& program, const Options& options, const std:
     std::fprintf(stderr,
                  "%s (%s): %s -> %s: %dx%d, %d spp, depth %d in %.2f s on %s: "
                  "%.3g samples, %.1f Mrays/s\n",
-                 name, std::string(program.variant).c_str(), options.scene.c_str(), output.c_str(),
-                 settings.width, settings.height, result.samples_per_pixel, settings.max_depth,
-                 stats.seconds, report.workers.c_str(), double(stats.samples),
+                 name, renderer_name(program, execution_model(options)).c_str(),
+                 options.scene.c_str(), output.c_str(), settings.width, settings.height,
+                 result.samples_per_pixel, settings.max_depth, stats.seconds,
+                 report.workers.c_str(), double(stats.samples),
                  double(stats.rays) / stats.seconds * 1e-6);
     std::fputs(report.after_summary.c_str(), stderr);
   }

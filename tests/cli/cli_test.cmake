@@ -1,9 +1,11 @@
 # End-to-end checks of the glint-render command line: exit codes, messages, outputs.
 
 # glint-render's progress printer (examples/progress_printer.hpp) on fixed sequences of
-# reports, and glint-render-mpi's scheduling (examples/tile_scheduler.hpp), which needs no MPI.
+# reports, glint-render-mpi's scheduling (examples/tile_scheduler.hpp), which needs no MPI, and
+# the programs' CPU check's message (examples/cpu_check.hpp).
 add_executable(glint-cli-tests ${CMAKE_CURRENT_LIST_DIR}/progress_printer_test.cpp
-                               ${CMAKE_CURRENT_LIST_DIR}/tile_scheduler_test.cpp)
+                               ${CMAKE_CURRENT_LIST_DIR}/tile_scheduler_test.cpp
+                               ${CMAKE_CURRENT_LIST_DIR}/cpu_check_test.cpp)
 target_include_directories(glint-cli-tests PRIVATE ${PROJECT_SOURCE_DIR}/examples)
 target_link_libraries(glint-cli-tests PRIVATE glint::glint glint_project_options glint_catch_main)
 catch_discover_tests(glint-cli-tests TEST_PREFIX "cli: " PROPERTIES LABELS cli)
@@ -120,9 +122,11 @@ else()
     ARGS ${glint_cli_scenes}/tiny.scene -o out.png --hdr out.pfm --exr out.exr --spp 3 --seed 7
          --threads 1
     EXPECT "pixel type: float" "pixels: identical to the PFM"
-           "comments \\(string\\) = <glint-render [0-9]+\\.[0-9]+\\.[0-9]+ \\([a-z_]+\\): .*tiny\\.scene, 3 of 3 samples per pixel, max depth 3, seed 7>"
+           "comments \\(string\\) = <glint-render [0-9]+\\.[0-9]+\\.[0-9]+ \\([a-z_]+, [a-z]+\\): .*tiny\\.scene, 3 of 3 samples per pixel, max depth 3, seed 7>"
            "glint/version \\(string\\) = <[0-9]+\\.[0-9]+\\.[0-9]+>"
-           "glint/variant \\(string\\) = <[a-z_]+>" "glint/scene \\(string\\) = <.*tiny\\.scene>"
+           "glint/variant \\(string\\) = <[a-z_]+>"
+           "glint/executionModel \\(string\\) = <[a-z]+>"
+           "glint/scene \\(string\\) = <.*tiny\\.scene>"
            "glint/width \\(int\\) = <24>" "glint/height \\(int\\) = <16>"
            "glint/samplesPerPixel \\(int\\) = <3>" "glint/samplesPerPixelRequested \\(int\\) = <3>"
            "glint/maxDepth \\(int\\) = <3>" "glint/antialiasSigma \\(float\\) = <[0-9.]+>"
@@ -181,9 +185,9 @@ function(glint_cli_progress_test name program variant)
            -P ${CMAKE_CURRENT_LIST_DIR}/check_progress.cmake)
   set_tests_properties("cli: ${name}" PROPERTIES LABELS cli)
 endfunction()
-glint_cli_progress_test(progress-report glint-render-report report
+glint_cli_progress_test(progress-report glint-render-report "report, scalar"
                         -o out.png --width 160 --height 96 --spp 3 --max-depth 2 --threads 2)
-glint_cli_progress_test(progress-default-variant glint-render [a-z_]+
+glint_cli_progress_test(progress-default-variant glint-render "[a-z_]+, (wavefront|scalar)"
                         -o out.png --width 160 --height 96 --spp 3 --max-depth 2 --threads 1)
 
 # Long renders (tests/cli/long_render_test.bash): the first SIGINT, SIGTERM or SIGHUP writes
@@ -204,6 +208,27 @@ if(GLINT_BASH)
                      $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
                      ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli SKIP_RETURN_CODE 77)
+  endforeach()
+endif()
+
+# The execution model (tests/cli/execution_model_test.bash): --scalar renders a finite image of
+# the right size; the default and --scalar agree statistically; a checkpoint of one model is
+# refused by the other, naming the file; a variant without the wavefront renderer accepts
+# --scalar, which changes nothing. --help says what --scalar does for each kind of variant.
+glint_cli_test(help-scalar STATUS 0
+               STDOUT "--scalar +render with the scalar renderer.*execution model: wavefront \\(the default\\), or scalar with --scalar"
+               ARGS --help)
+glint_cli_test(help-scalar-report PROGRAM glint-render-report STATUS 0
+               STDOUT "--scalar +accepted, and changes nothing.*execution model: scalar \\(this variant's only one\\)"
+               ARGS --help)
+if(GLINT_BASH)
+  foreach(case scalar_renders models_agree resume_other_model scalar_changes_nothing)
+    string(REPLACE "_" "-" name ${case})
+    add_test(NAME "cli: ${name}"
+             COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/execution_model_test.bash ${case}
+                     $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
+                     ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
+    set_tests_properties("cli: ${name}" PROPERTIES LABELS cli)
   endforeach()
 endif()
 

@@ -298,7 +298,7 @@ case_resume_refused() {
     "$scene" "${long_render[@]}" --seed 7 --resume ck.glint
   if [[ -n $other_program ]]; then
     program=$other_program refused_before_render \
-      "^glint-render: error: cannot resume from ck\.glint: it was made by variant '[a-z_]+', this is variant 'report'$" \
+      "^glint-render: error: cannot resume from ck\.glint: it was made by variant '[a-z_]+(, wavefront)?', this is variant 'report'$" \
       "$scene" "${long_render[@]}" --resume ck.glint
   fi
   head -c 100 ck.glint >short.glint
