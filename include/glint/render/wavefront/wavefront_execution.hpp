@@ -33,6 +33,17 @@
 #include "glint/render/tile_grid.hpp"
 #include "glint/scene/scene.hpp"
 
+// Everything the shading and camera stages call is inlined into them. Besides speed, this
+// keeps the scalar renderer's code what it is alone: the sampler's draws, the lobe sampling
+// and the emitter sampling would otherwise have two callers in a program that holds both
+// renderers, GCC would leave them out of line, and the multiply-adds it fuses across those
+// calls would change the last bits of the scalar renderer's images.
+#if defined(__GNUC__) && !defined(__clang__)
+#define GLINT_FLATTEN [[gnu::flatten]]
+#else
+#define GLINT_FLATTEN
+#endif
+
 namespace glint {
 
 /// Whether variant C can be rendered by WavefrontRenderer: it follows one lobe per bounce, so a
@@ -192,7 +203,8 @@ class WavefrontExecution {
 
   /// Path p starts sample n: the camera ray through its point of the pixel, as
   /// ScalarExecution::add_samples makes it.
-  void start_path(ThreadState& state, int p, std::uint32_t n, const PieceLayout& piece) const {
+  GLINT_FLATTEN void start_path(ThreadState& state, int p, std::uint32_t n,
+                                const PieceLayout& piece) const {
     const auto u = std::size_t(p);
     const int x = piece.x(n);
     const int y = piece.y(n);
@@ -220,7 +232,7 @@ class WavefrontExecution {
 
   /// ChainEstimator's loop body for path p at the hit its ray found, up to the rays it needs
   /// traced: their light is added by gather_and_retire.
-  void shade(ThreadState& state, int p, TraceCounters& counters) const {
+  GLINT_FLATTEN void shade(ThreadState& state, int p, TraceCounters& counters) const {
     const auto u = std::size_t(p);
     state.pending[u] = 0;
     state.ends[u] = 1;
