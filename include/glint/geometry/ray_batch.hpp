@@ -30,7 +30,7 @@ struct alignas(32) RayBatch {
   float t_max[kWidth];
   std::uint32_t origin_sphere[kWidth];
   /// Ray::heads_into_origin_sphere, one bit per lane.
-  LaneMask heads_into_origin_sphere;
+  LaneMask heads_into_origin_sphere = 0;
 
   void set(int lane, const Ray& ray) {
     origin_x[lane] = ray.origin.x;
