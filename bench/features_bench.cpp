@@ -590,7 +590,7 @@ BENCHMARK(BM_SceneBatchOccluded)
 
 #ifdef GLINT_AVX2
 /// The hierarchy alone (the scene's spheres but its walls), packet or one traversal per lane,
-/// whatever SphereBvh::coherent would choose: what the choice is made on.
+/// whatever same_octant would choose: what the choice is made on.
 void BM_BvhBatch(benchmark::State& state) {
   const int count = static_cast<int>(state.range(0));
   const BatchInputs inputs(count, static_cast<int>(state.range(1)), state.range(3) == 1);

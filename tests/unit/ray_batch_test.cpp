@@ -348,7 +348,7 @@ TEST_CASE("closest_hits: ties between duplicates go to the lowest id in every la
 #ifdef GLINT_AVX2
 TEST_CASE("SphereBvh: the packet traversal answers as one traversal per lane",
           "[geometry][ray_batch]") {
-  // Directly, whatever SphereBvh::coherent would choose: incoherent batches included.
+  // Directly, whatever same_octant would choose: incoherent batches included.
   glint::Pcg32 rng(17, 1);
   std::vector<glint::SphereBvh::Input> inputs;
   std::vector<glint::SphereDescription> spheres;
@@ -400,7 +400,7 @@ TEST_CASE("SphereBvh: the packet traversal answers as one traversal per lane",
 }
 #endif
 
-TEST_CASE("SphereBvh::coherent: one octant", "[geometry][ray_batch]") {
+TEST_CASE("same_octant", "[geometry][ray_batch]") {
   RayBatch batch;
   batch.heads_into_origin_sphere = 0;
   for (int lane = 0; lane < kWidth; ++lane) {
@@ -408,9 +408,9 @@ TEST_CASE("SphereBvh::coherent: one octant", "[geometry][ray_batch]") {
     ray.direction = glm::normalize(Vec3(0.1f * float(lane + 1), 1.0f, -0.5f));
     batch.set(lane, ray);
   }
-  CHECK(glint::SphereBvh::coherent(batch, RayBatch::kAllLanes));
+  CHECK(glint::same_octant(batch, RayBatch::kAllLanes));
   batch.direction_x[3] = -0.1f;
-  CHECK_FALSE(glint::SphereBvh::coherent(batch, RayBatch::kAllLanes));
-  CHECK(glint::SphereBvh::coherent(batch, RayBatch::kAllLanes & ~(LaneMask(1) << 3)));
-  CHECK(glint::SphereBvh::coherent(batch, LaneMask(1) << 3));
+  CHECK_FALSE(glint::same_octant(batch, RayBatch::kAllLanes));
+  CHECK(glint::same_octant(batch, RayBatch::kAllLanes & ~(LaneMask(1) << 3)));
+  CHECK(glint::same_octant(batch, LaneMask(1) << 3));
 }

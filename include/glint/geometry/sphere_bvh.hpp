@@ -4,7 +4,6 @@
 // wide tree for traversal (bvh/wide.hpp, bvh/traverse.hpp), whose leaves are tested by the
 // leaf kernel that SphereSet uses too (sphere_kernel.hpp).
 
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -54,11 +53,15 @@ class SphereBvh {
 
   /// closest_hit for each ray of `active`, hits[lane] playing `hit`; returns the lanes for
   /// which it found a hit. Exactly closest_hit's answer lane by lane: a packet traversal for
-  /// coherent batches (see coherent), else one traversal per lane.
+  /// batches whose rays share an octant (same_octant), else one traversal per lane. On 2-vCPU
+  /// AMD EPYC Zen 5 (glint-features-bench BM_BvhBatch, 10^4 and 10^5 spheres) the packet is
+  /// 1.9-2.3x as fast as eight traversals for 4x2 blocks of camera rays (2.5-2.7x for
+  /// occlusion), but 0.56-0.57x for random rays (0.9-1.04x): random batches of eight almost
+  /// never share an octant, camera blocks almost always do.
   LaneMask closest_hits(const RayBatch& rays, LaneMask active,
                         SphereHit (&hits)[RayBatch::kWidth]) const {
 #ifdef GLINT_AVX2
-    if (coherent(rays, active)) return closest_hits_packet(rays, active, hits);
+    if (same_octant(rays, active)) return closest_hits_packet(rays, active, hits);
 #endif
     return closest_hits_per_lane(rays, active, hits);
   }
@@ -66,7 +69,7 @@ class SphereBvh {
   /// any_hit for each ray of `active`: the lanes whose ray is blocked.
   LaneMask any_hits(const RayBatch& rays, LaneMask active) const {
 #ifdef GLINT_AVX2
-    if (coherent(rays, active)) return any_hits_packet(rays, active);
+    if (same_octant(rays, active)) return any_hits_packet(rays, active);
 #endif
     return any_hits_per_lane(rays, active);
   }
@@ -112,21 +115,6 @@ class SphereBvh {
     return traverse_packet<true>(rays, active, lane_rays, best);
   }
 #endif
-
-  /// Whether a batch is coherent enough for a packet traversal: its active rays' directions
-  /// lie in one octant (the rays of a pixel block, shadow rays towards one light); one lane
-  /// counts as coherent.
-  static bool coherent(const RayBatch& rays, LaneMask active) {
-    const float* const columns[3] = {rays.direction_x, rays.direction_y, rays.direction_z};
-    for (const float* column : columns) {
-      LaneMask negative = 0;
-      for_each_lane(active, [&](int lane) {
-        if (std::signbit(column[lane])) negative |= LaneMask(1) << lane;
-      });
-      if (negative != 0 && negative != active) return false;
-    }
-    return true;
-  }
 
   /// Calls visit(id) for every sphere whose bounding box overlaps the box [lower, upper]
   /// (a superset of the spheres that overlap it). For scene building, not for rendering.

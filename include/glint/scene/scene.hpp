@@ -176,6 +176,10 @@ class Scene {
     });
     LaneMask pending = active & ~blocked;
     if (pending != 0 && (!walls_.empty() || !linear_.empty())) {
+      // All lanes at once, coherent or not. This scan stops once every lane is blocked, the
+      // single-ray one at its ray's first blocker: for random shadow rays in a room of 40
+      // spheres it is 0.92x as fast as eight single-ray queries, but a scan per lane measured
+      // no better (0.88x, its overhead); for shadow rays of camera blocks it is 1.4x.
       SphereHit bound[RayBatch::kWidth];
       for (int lane = 0; lane < RayBatch::kWidth; ++lane)
         bound[lane] = (pending >> lane) & 1u ? hit_to_beat(rays.get(lane), SphereHit{})

@@ -3,14 +3,17 @@
 // visited when any live lane's ray enters its box before that lane's best hit, each lane
 // keeping its own bounds. Box tests are those of traverse.hpp with ray and box swapped (one
 // box broadcast, a ray per lane); leaves are tested lane by lane by the caller's function, so
-// that each lane gets the single-ray leaf test's answers. Like traverse, it visits leaves
-// nearest first (by the nearest entry among the lanes) as soon as their node is reached, and
+// that each lane gets the single-ray leaf test's answers. (A ray-parallel leaf kernel could not
+// promise that: the scalar leaf test is C++ whose rounding is the compiler's choice of fused
+// multiply-adds, GCC's -ffp-contract=fast fusing for instance r * r into both r^2 - |p|^2 and
+// |f|^2 - r^2, clang's default fusing neither; intrinsics fix one choice.) Like traverse, it visits
+// leaves nearest first (by the nearest entry among the lanes) as soon as their node is reached, and
 // skips a subtree that every lane enters beyond its best hit.
 //
 // A packet pays for the lanes that a node does not concern: for rays of one pixel block
 // (camera rays, shadow rays towards one light) it shares node loads and box tests between the
-// lanes; for incoherent rays it visits the union of eight traversals. Scene decides which to
-// use per batch (see SphereBvh::closest_hits).
+// lanes; for incoherent rays it visits the union of eight traversals. SphereBvh decides which
+// to use per batch (SphereBvh::closest_hits).
 
 #include <array>
 #include <concepts>
