@@ -5,10 +5,11 @@
 // box broadcast, a ray per lane); leaves are tested lane by lane by the caller's function, so
 // that each lane gets the single-ray leaf test's answers. (A ray-parallel leaf kernel could not
 // promise that: the scalar leaf test is C++ whose rounding is the compiler's choice of fused
-// multiply-adds, GCC's -ffp-contract=fast fusing for instance r * r into both r^2 - |p|^2 and
-// |f|^2 - r^2, clang's default fusing neither; intrinsics fix one choice.) Like traverse, it visits
-// leaves nearest first (by the nearest entry among the lanes) as soon as their node is reached, and
-// skips a subtree that every lane enters beyond its best hit.
+// multiply-adds, GCC's -ffp-contract=fast making for instance b = fma(fz, dz, fma(fy, dy,
+// fx dx)), x first where the AVX2 scan starts from z, clang's default fusing none; intrinsics
+// fix one choice.) Like traverse, it visits leaves nearest first (by the nearest entry among
+// the lanes) as soon as their node is reached, and skips a subtree that every lane enters
+// beyond its best hit.
 //
 // A packet pays for the lanes that a node does not concern: for rays of one pixel block
 // (camera rays, shadow rays towards one light) it shares node loads and box tests between the
