@@ -9,7 +9,9 @@
 // that Embree's 8-ray packets are pixel neighbours) and incoherent random rays (origins uniform
 // in the box of the ordinary spheres' centres, directions uniform on the sphere). Each engine
 // answers closest-hit queries: glint through Scene::closest_hit (its BVH, with the walls kept
-// apart as glint does); Embree through rtcIntersect1 and rtcIntersect8 over one
+// apart as glint does) and through Scene::closest_hits, eight rays (one 4x2 block of camera
+// rays) a query, whose answers must be those of closest_hit exactly (else exit status 1);
+// Embree through rtcIntersect1 and rtcIntersect8 over one
 // RTC_GEOMETRY_TYPE_SPHERE_POINT geometry. Throughput is rays per wall-clock second on 1 and
 // 2 threads (the best of a few runs, after a warm-up), build time the best of a few builds:
 // glint's SphereBvh over all the spheres and Embree's rtcCommitScene, each limited to the row's
@@ -266,26 +268,29 @@ struct Row {
   std::string scene, rays;
   std::size_t spheres = 0, ray_count = 0;
   int threads = 0;
-  double glint_mrays = 0, embree1_mrays = 0, embree8_mrays = 0;
+  double glint_mrays = 0, glint8_mrays = 0, embree1_mrays = 0, embree8_mrays = 0;
   double glint_build = 0, embree_build = 0;
-  double agreement = 0;  ///< share of rays whose hits (sphere or miss) agree
+  double agreement = 0;       ///< share of rays whose hits (sphere or miss) agree
+  bool batched_exact = true;  ///< closest_hits answered closest_hit's hits exactly
 };
 
 std::string format_row(const Row& r) {
   char line[512];
   const double best_embree = std::max(r.embree1_mrays, r.embree8_mrays);
   std::snprintf(line, sizeof line,
-                "| %s | %zu | %s | %d | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.2f | %.4f%% |",
+                "| %s | %zu | %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.2f | "
+                "%.4f%% |",
                 r.scene.c_str(), r.spheres, r.rays.c_str(), r.threads, r.glint_mrays,
-                r.embree1_mrays, r.embree8_mrays, r.glint_mrays / best_embree, r.glint_build,
-                r.embree_build, r.embree_build / r.glint_build, 100.0 * r.agreement);
+                r.glint8_mrays, r.embree1_mrays, r.embree8_mrays, r.glint_mrays / best_embree,
+                r.glint_build, r.embree_build, r.embree_build / r.glint_build, 100.0 * r.agreement);
   return line;
 }
 
 const char* kHeader =
-    "| scene | spheres | rays | threads | glint Mrays/s | Embree 1 Mrays/s | Embree 8 Mrays/s | "
-    "glint / best Embree | glint build s | Embree build s | Embree / glint build | hits agree |\n"
-    "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|";
+    "| scene | spheres | rays | threads | glint Mrays/s | glint 8 Mrays/s | Embree 1 Mrays/s | "
+    "Embree 8 Mrays/s | glint / best Embree | glint build s | Embree build s | "
+    "Embree / glint build | hits agree |\n"
+    "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|";
 
 }  // namespace
 
@@ -332,7 +337,8 @@ int main(int argc, char** argv) {
     for (const RaySet& set :
          {camera_rays(test.description, image_side), random_rays(test.description, random_count)}) {
       const std::size_t n = set.rays.size();
-      std::vector<std::uint32_t> glint_hits(n), embree_hits(n);
+      std::vector<std::uint32_t> glint_hits(n), glint8_hits(n), embree_hits(n);
+      std::vector<float> glint_t(n), glint8_t(n);
       for (const int threads : {1, 2}) {
         Row row;
         row.scene = test.name;
@@ -351,9 +357,28 @@ int main(int argc, char** argv) {
             for (std::size_t i = begin; i < end; ++i) {
               const std::optional<glint::SphereHit> hit = scene.closest_hit(set.rays[i]);
               glint_hits[i] = hit ? hit->sphere : kMiss;
+              glint_t[i] = hit ? hit->t : glint::kInfinity;
             }
           });
         });
+        const double glint8_seconds = best_of(runs, [&] {
+          return timed_parallel(n, threads, [&](std::size_t begin, std::size_t end) {
+            glint::RayBatch batch;
+            glint::HitBatch hits;
+            for (std::size_t base = begin; base < end; base += 8) {
+              for (int k = 0; k < 8; ++k)
+                batch.set(k, set.rays[base + std::size_t(k)]);
+              scene.closest_hits(batch, glint::RayBatch::kAllLanes, hits);
+              for (int k = 0; k < 8; ++k) {
+                glint8_hits[base + std::size_t(k)] = hits.sphere[k];
+                glint8_t[base + std::size_t(k)] = hits.t[k];
+              }
+            }
+          });
+        });
+        for (std::size_t i = 0; i < n; ++i)
+          row.batched_exact = row.batched_exact && glint8_hits[i] == glint_hits[i] &&
+                              std::memcmp(&glint8_t[i], &glint_t[i], sizeof(float)) == 0;
         const double embree1_seconds = best_of(runs, [&] {
           return timed_parallel(n, threads, [&](std::size_t begin, std::size_t end) {
             embree.intersect1(set.rays.data() + begin, end - begin, embree_hits.data() + begin);
@@ -369,6 +394,7 @@ int main(int argc, char** argv) {
           agree += glint_hits[i] == embree_hits[i] ? 1 : 0;
         row.agreement = double(agree) / double(n);
         row.glint_mrays = double(n) / glint_seconds * 1e-6;
+        row.glint8_mrays = double(n) / glint8_seconds * 1e-6;
         row.embree1_mrays = double(n) / embree1_seconds * 1e-6;
         row.embree8_mrays = double(n) / embree8_seconds * 1e-6;
         std::puts(format_row(row).c_str());
@@ -379,7 +405,14 @@ int main(int argc, char** argv) {
   }
   constexpr double kMinAgreement = 0.999;
   bool agreed = true;
-  for (const Row& r : rows)
+  for (const Row& r : rows) {
+    if (!r.batched_exact) {
+      std::fprintf(stderr,
+                   "glint-embree-compare: Scene::closest_hits differs from closest_hit on the %s "
+                   "rays of %s\n",
+                   r.rays.c_str(), r.scene.c_str());
+      agreed = false;
+    }
     if (r.agreement < kMinAgreement) {
       std::fprintf(stderr,
                    "glint-embree-compare: glint and Embree disagree on %.3f%% of the %s rays of "
@@ -388,6 +421,7 @@ int main(int argc, char** argv) {
                    100.0 * (1.0 - kMinAgreement));
       agreed = false;
     }
+  }
   if (!markdown.empty()) {
     std::ofstream out(markdown);
     out << kHeader << "\n";

@@ -15,8 +15,10 @@
 
 #include "glint/generate/random_scene.hpp"
 #include "glint/geometry/ray.hpp"
+#include "glint/geometry/ray_batch.hpp"
 #include "glint/geometry/ray_sphere.hpp"
 #include "glint/geometry/simd.hpp"
+#include "glint/geometry/sphere_bvh.hpp"
 #include "glint/geometry/sphere_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/policy/antialiasing.hpp"
@@ -455,14 +457,18 @@ struct SceneInputs {
 
   static float domain_size(int count) { return 80.0f * std::cbrt(float(count) / 40.0f); }
 
-  static glint::Scene build(int count) {
+  static glint::RandomSceneParameters parameters(int count) {
     glint::RandomSceneParameters parameters;
     parameters.sphere_count = count;
     parameters.domain_size = domain_size(count);
     parameters.min_radius = 1.0f;
     parameters.max_radius = 4.0f;
     parameters.seed = 7;
-    return glint::Scene::build(glint::generate_random_scene(parameters).scene);
+    return parameters;
+  }
+
+  static glint::Scene build(int count) {
+    return glint::Scene::build(glint::generate_random_scene(parameters(count)).scene);
   }
 };
 
@@ -493,6 +499,131 @@ void BM_SceneOccluded(benchmark::State& state) {
   state.counters["blocked"] = double(blocked) / double(i);
 }
 BENCHMARK(BM_SceneOccluded)->ArgName("spheres")->Arg(40)->Arg(1000)->Arg(100000);
+
+// ---------------------------------------------------------------------------------------------
+// Batched queries: eight rays at once (Scene::closest_hits, occluded) against eight single-ray
+// queries, on the same scenes as above, for camera rays (4 x 2 pixel blocks of a 256 x 256
+// image from the scene's camera, each block an 8-ray batch) and the random rays above.
+
+enum BatchRays { kCameraRays = 0, kRandomRays = 1 };
+enum BatchMode { kEightSingle = 0, kBatched = 1 };
+
+struct BatchInputs {
+  SceneInputs in;
+  std::vector<glint::RayBatch> batches;
+
+  BatchInputs(int count, int kind, bool shadow) : in(count), batches(kInputs / 8) {
+    glint::Pcg32 rng(5, 5);
+    const glint::CameraDescription& camera = in.scene.camera();
+    const Vec3 forward = glm::normalize(camera.look_at - camera.position);
+    const Vec3 right = glm::normalize(glm::cross(forward, camera.up));
+    const Vec3 up = glm::cross(right, forward);
+    const float half_height = std::tan(0.5f * camera.fov_degrees * glint::kPi / 180.0f);
+    const float size = SceneInputs::domain_size(count);
+    constexpr int kImage = 256;
+    for (std::size_t b = 0; b < batches.size(); ++b) {
+      glint::RayBatch& batch = batches[b];
+      batch.heads_into_origin_sphere = 0;
+      const int x0 = int(rng.next_u32() % (kImage / 4)) * 4,
+                y0 = int(rng.next_u32() % (kImage / 2)) * 2;
+      for (int lane = 0; lane < 8; ++lane) {
+        glint::Ray ray;
+        if (kind == kCameraRays) {
+          const float u = (float(x0 + lane % 4) + 0.5f) / kImage * 2.0f - 1.0f;
+          const float v = (float(y0 + lane / 4) + 0.5f) / kImage * 2.0f - 1.0f;
+          ray.origin = camera.position;
+          ray.direction = glm::normalize(forward + half_height * (u * right + v * up));
+          // Shadow rays: as far as the middle of the spheres.
+          if (shadow) ray.t_max = glm::length(camera.look_at - camera.position);
+        } else {
+          ray = in.rays[8 * b + std::size_t(lane)];
+          if (shadow) ray.t_max = 0.25f * size;
+        }
+        batch.set(lane, ray);
+      }
+    }
+  }
+};
+
+void BM_SceneBatchClosestHit(benchmark::State& state) {
+  const BatchInputs inputs(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
+                           false);
+  const bool batched = state.range(2) == kBatched;
+  std::size_t i = 0;
+  glint::HitBatch hits;
+  for (auto _ : state) {
+    const glint::RayBatch& batch = inputs.batches[i++ & (kMask / 8)];
+    if (batched) {
+      benchmark::DoNotOptimize(
+          inputs.in.scene.closest_hits(batch, glint::RayBatch::kAllLanes, hits));
+      benchmark::ClobberMemory();
+    } else {
+      for (int lane = 0; lane < 8; ++lane)
+        benchmark::DoNotOptimize(inputs.in.scene.closest_hit(batch.get(lane)));
+    }
+  }
+  state.SetItemsProcessed(8 * state.iterations());
+}
+BENCHMARK(BM_SceneBatchClosestHit)
+    ->ArgNames({"spheres", "random", "batched"})
+    ->ArgsProduct({{40, 10000, 100000}, {kCameraRays, kRandomRays}, {kEightSingle, kBatched}});
+
+void BM_SceneBatchOccluded(benchmark::State& state) {
+  const BatchInputs inputs(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
+                           true);
+  const bool batched = state.range(2) == kBatched;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const glint::RayBatch& batch = inputs.batches[i++ & (kMask / 8)];
+    if (batched) {
+      benchmark::DoNotOptimize(inputs.in.scene.occluded(batch, glint::RayBatch::kAllLanes));
+    } else {
+      for (int lane = 0; lane < 8; ++lane)
+        benchmark::DoNotOptimize(inputs.in.scene.occluded(batch.get(lane)));
+    }
+  }
+  state.SetItemsProcessed(8 * state.iterations());
+}
+BENCHMARK(BM_SceneBatchOccluded)
+    ->ArgNames({"spheres", "random", "batched"})
+    ->ArgsProduct({{40, 10000, 100000}, {kCameraRays, kRandomRays}, {kEightSingle, kBatched}});
+
+#ifdef GLINT_AVX2
+/// The hierarchy alone (the scene's spheres but its walls), packet or one traversal per lane,
+/// whatever same_octant would choose: what the choice is made on.
+void BM_BvhBatch(benchmark::State& state) {
+  const int count = static_cast<int>(state.range(0));
+  const BatchInputs inputs(count, static_cast<int>(state.range(1)), state.range(3) == 1);
+  const glint::SceneDescription description =
+      glint::generate_random_scene(SceneInputs::parameters(count)).scene;
+  std::vector<glint::SphereBvh::Input> spheres;
+  for (std::size_t s = 0; s < description.spheres.size(); ++s)
+    if (description.spheres[s].radius <= 4.0f)
+      spheres.push_back(
+          {description.spheres[s].center, description.spheres[s].radius, std::uint32_t(s)});
+  const glint::SphereBvh bvh(std::move(spheres));
+  const bool packet = state.range(2) == 1;
+  const bool any = state.range(3) == 1;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const glint::RayBatch& batch = inputs.batches[i++ & (kMask / 8)];
+    if (any) {
+      benchmark::DoNotOptimize(packet ? bvh.any_hits_packet(batch, glint::RayBatch::kAllLanes)
+                                      : bvh.any_hits_per_lane(batch, glint::RayBatch::kAllLanes));
+    } else {
+      glint::SphereHit hits[8];
+      benchmark::DoNotOptimize(
+          packet ? bvh.closest_hits_packet(batch, glint::RayBatch::kAllLanes, hits)
+                 : bvh.closest_hits_per_lane(batch, glint::RayBatch::kAllLanes, hits));
+      benchmark::ClobberMemory();
+    }
+  }
+  state.SetItemsProcessed(8 * state.iterations());
+}
+BENCHMARK(BM_BvhBatch)
+    ->ArgNames({"spheres", "random", "packet", "occluded"})
+    ->ArgsProduct({{10000, 100000}, {kCameraRays, kRandomRays}, {0, 1}, {0, 1}});
+#endif
 
 }  // namespace
 

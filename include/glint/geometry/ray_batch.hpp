@@ -6,6 +6,7 @@
 // those stay the reference.
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 
 #include "glint/geometry/accelerator.hpp"
@@ -30,7 +31,7 @@ struct alignas(32) RayBatch {
   float t_max[kWidth];
   std::uint32_t origin_sphere[kWidth];
   /// Ray::heads_into_origin_sphere, one bit per lane.
-  LaneMask heads_into_origin_sphere;
+  LaneMask heads_into_origin_sphere = 0;
 
   void set(int lane, const Ray& ray) {
     origin_x[lane] = ray.origin.x;
@@ -70,6 +71,20 @@ struct alignas(32) HitBatch {
     sphere[lane] = hit.sphere;
   }
 };
+
+/// Whether the directions of the rays of `mask` lie in one octant, a cheap test of coherence
+/// (the rays of a pixel block, shadow rays towards a distant light); true for one ray.
+inline bool same_octant(const RayBatch& rays, LaneMask mask) {
+  const float* const columns[3] = {rays.direction_x, rays.direction_y, rays.direction_z};
+  for (const float* column : columns) {
+    LaneMask negative = 0;
+    for (int lane = 0; lane < RayBatch::kWidth; ++lane)
+      negative |= LaneMask(std::signbit(column[lane])) << lane;
+    negative &= mask;
+    if (negative != 0 && negative != mask) return false;
+  }
+  return true;
+}
 
 /// Calls visit(lane) for each lane of `mask`, lowest first.
 template <typename Visit>

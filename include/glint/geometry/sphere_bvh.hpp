@@ -13,9 +13,12 @@
 
 #include "glint/geometry/accelerator.hpp"
 #include "glint/geometry/bvh/build.hpp"
+#include "glint/geometry/bvh/packet.hpp"
 #include "glint/geometry/bvh/traverse.hpp"
 #include "glint/geometry/bvh/wide.hpp"
 #include "glint/geometry/ray.hpp"
+#include "glint/geometry/ray_batch.hpp"
+#include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_kernel.hpp"
 
 namespace glint {
@@ -47,6 +50,71 @@ class SphereBvh {
     SphereHit best = hit_to_beat(ray, SphereHit{});
     return traverse<true>(ray, best);
   }
+
+  /// closest_hit for each ray of `active`, hits[lane] playing `hit`; returns the lanes for
+  /// which it found a hit. Exactly closest_hit's answer lane by lane: a packet traversal for
+  /// batches whose rays share an octant (same_octant), else one traversal per lane. On 2-vCPU
+  /// AMD EPYC Zen 5 (glint-features-bench BM_BvhBatch, 10^4 and 10^5 spheres) the packet is
+  /// 1.9-2.3x as fast as eight traversals for 4x2 blocks of camera rays (2.5-2.7x for
+  /// occlusion), but 0.56-0.57x for random rays (0.9-1.04x): random batches of eight almost
+  /// never share an octant, camera blocks almost always do.
+  LaneMask closest_hits(const RayBatch& rays, LaneMask active,
+                        SphereHit (&hits)[RayBatch::kWidth]) const {
+#ifdef GLINT_AVX2
+    if (same_octant(rays, active)) return closest_hits_packet(rays, active, hits);
+#endif
+    return closest_hits_per_lane(rays, active, hits);
+  }
+
+  /// any_hit for each ray of `active`: the lanes whose ray is blocked.
+  LaneMask any_hits(const RayBatch& rays, LaneMask active) const {
+#ifdef GLINT_AVX2
+    if (same_octant(rays, active)) return any_hits_packet(rays, active);
+#endif
+    return any_hits_per_lane(rays, active);
+  }
+
+  /// closest_hits and any_hits with one single-ray traversal per lane.
+  LaneMask closest_hits_per_lane(const RayBatch& rays, LaneMask active,
+                                 SphereHit (&hits)[RayBatch::kWidth]) const {
+    LaneMask found = 0;
+    for_each_lane(active, [&](int lane) {
+      if (closest_hit(rays.get(lane), hits[lane])) found |= LaneMask(1) << lane;
+    });
+    return found;
+  }
+  LaneMask any_hits_per_lane(const RayBatch& rays, LaneMask active) const {
+    LaneMask blocked = 0;
+    for_each_lane(active, [&](int lane) {
+      if (any_hit(rays.get(lane))) blocked |= LaneMask(1) << lane;
+    });
+    return blocked;
+  }
+
+#ifdef GLINT_AVX2
+  /// closest_hits and any_hits with one packet traversal (bvh/packet.hpp) for all lanes.
+  LaneMask closest_hits_packet(const RayBatch& rays, LaneMask active,
+                               SphereHit (&hits)[RayBatch::kWidth]) const {
+    Ray lane_rays[RayBatch::kWidth];
+    SphereHit best[RayBatch::kWidth];
+    for_each_lane(active, [&](int lane) {
+      lane_rays[lane] = rays.get(lane);
+      best[lane] = hit_to_beat(lane_rays[lane], hits[lane]);
+    });
+    const LaneMask found = traverse_packet<false>(rays, active, lane_rays, best);
+    for_each_lane(found, [&](int lane) { hits[lane] = best[lane]; });
+    return found;
+  }
+  LaneMask any_hits_packet(const RayBatch& rays, LaneMask active) const {
+    Ray lane_rays[RayBatch::kWidth];
+    SphereHit best[RayBatch::kWidth];
+    for_each_lane(active, [&](int lane) {
+      lane_rays[lane] = rays.get(lane);
+      best[lane] = hit_to_beat(lane_rays[lane], SphereHit{});
+    });
+    return traverse_packet<true>(rays, active, lane_rays, best);
+  }
+#endif
 
   /// Calls visit(id) for every sphere whose bounding box overlaps the box [lower, upper]
   /// (a superset of the spheres that overlap it). For scene building, not for rendering.
@@ -97,6 +165,20 @@ class SphereBvh {
           return test_spheres(ray, leaves, first, first + count, leaf_best, kAnyHit);
         });
   }
+
+#ifdef GLINT_AVX2
+  template <bool kAnyHit>
+  LaneMask traverse_packet(const RayBatch& rays, LaneMask active,
+                           const Ray (&lane_rays)[RayBatch::kWidth],
+                           SphereHit (&best)[RayBatch::kWidth]) const {
+    const LeafSpheres leaves{tree_.spheres.data()};
+    return bvh::traverse_packet<kAnyHit>(
+        wide_, rays, active, best,
+        [&](int lane, std::uint32_t first, std::uint32_t count, SphereHit& leaf_best) {
+          return test_spheres(lane_rays[lane], leaves, first, first + count, leaf_best, kAnyHit);
+        });
+  }
+#endif
 
   bvh::BinaryTree tree_;             // building and box queries
   std::vector<bvh::WideNode> wide_;  // ray traversal

@@ -5,7 +5,10 @@
 // and avx2::any_hit are the 8-wide form of the same test for the sets' structure-of-arrays
 // storage (SphereColumns for spheres given by their centre, AnchoredColumns for anchored ones,
 // see ray_sphere.hpp): the same formulas with the same tie rule, but their own order of fused
-// operations, so they agree with the scalar form up to rounding, not bit for bit.
+// operations, so they agree with the scalar form up to rounding, not bit for bit. Their
+// arithmetic is written once over lanes that each pair a ray with a sphere (test_lanes): here
+// one ray against eight spheres, in ray_batch_kernel.hpp eight rays against one sphere, which
+// so gives each ray exactly the t that this scan gives it.
 
 #include <bit>
 #include <concepts>
@@ -133,7 +136,53 @@ struct RayLanes {
         dz(_mm256_set1_ps(ray.direction.z)),
         t_min(_mm256_set1_ps(ray.t_min)),
         origin_sphere(_mm256_set1_epi32(static_cast<int>(ray.origin_sphere))) {}
+  /// A ray per lane (see ray_batch_kernel.hpp).
+  RayLanes(__m256 ox_lanes, __m256 oy_lanes, __m256 oz_lanes, __m256 dx_lanes, __m256 dy_lanes,
+           __m256 dz_lanes, __m256 t_min_lanes, __m256i origin_sphere_lanes)
+      : ox(ox_lanes),
+        oy(oy_lanes),
+        oz(oz_lanes),
+        dx(dx_lanes),
+        dy(dy_lanes),
+        dz(dz_lanes),
+        t_min(t_min_lanes),
+        origin_sphere(origin_sphere_lanes) {}
 };
+
+/// A sphere given by its centre in each lane: eight of a SphereColumns (load_lanes), or one
+/// broadcast (broadcast_lanes).
+struct SphereLanes {
+  __m256 cx, cy, cz, r2;
+};
+
+inline SphereLanes load_lanes(const SphereColumns& spheres, std::size_t base) {
+  return {_mm256_load_ps(spheres.cx + base), _mm256_load_ps(spheres.cy + base),
+          _mm256_load_ps(spheres.cz + base), _mm256_load_ps(spheres.r2 + base)};
+}
+
+inline SphereLanes broadcast_lanes(const SphereColumns& spheres, std::size_t i) {
+  return {_mm256_set1_ps(spheres.cx[i]), _mm256_set1_ps(spheres.cy[i]),
+          _mm256_set1_ps(spheres.cz[i]), _mm256_set1_ps(spheres.r2[i])};
+}
+
+/// An anchored sphere in each lane, as SphereLanes.
+struct AnchoredLanes {
+  __m256 ax, ay, az, mx, my, mz, r2;
+};
+
+inline AnchoredLanes load_lanes(const AnchoredColumns& spheres, std::size_t base) {
+  return {_mm256_load_ps(spheres.ax + base), _mm256_load_ps(spheres.ay + base),
+          _mm256_load_ps(spheres.az + base), _mm256_load_ps(spheres.mx + base),
+          _mm256_load_ps(spheres.my + base), _mm256_load_ps(spheres.mz + base),
+          _mm256_load_ps(spheres.r2 + base)};
+}
+
+inline AnchoredLanes broadcast_lanes(const AnchoredColumns& spheres, std::size_t i) {
+  return {_mm256_set1_ps(spheres.ax[i]), _mm256_set1_ps(spheres.ay[i]),
+          _mm256_set1_ps(spheres.az[i]), _mm256_set1_ps(spheres.mx[i]),
+          _mm256_set1_ps(spheres.my[i]), _mm256_set1_ps(spheres.mz[i]),
+          _mm256_set1_ps(spheres.r2[i])};
+}
 
 /// A hit per lane.
 struct HitLanes {
@@ -169,15 +218,15 @@ inline bool first_roots_from(const RayLanes& ray, __m256 b, __m256 c, __m256 dis
   return true;
 }
 
-/// For the eight spheres at `base`: in each lane the first root past t_min (the near root, or
-/// the far one from inside), and in `has_roots` whether the ray meets the sphere at all.
-/// Returns false, leaving both unset, when no lane can have a root ahead of the ray.
-inline bool first_roots(const RayLanes& ray, const SphereColumns& spheres, std::size_t base,
-                        __m256& t, __m256& has_roots) {
-  const __m256 fx = _mm256_sub_ps(ray.ox, _mm256_load_ps(spheres.cx + base));
-  const __m256 fy = _mm256_sub_ps(ray.oy, _mm256_load_ps(spheres.cy + base));
-  const __m256 fz = _mm256_sub_ps(ray.oz, _mm256_load_ps(spheres.cz + base));
-  const __m256 r2 = _mm256_load_ps(spheres.r2 + base);
+/// For the ray and sphere of each lane: the first root past t_min (the near root, or the far
+/// one from inside), and in `has_roots` whether the ray meets the sphere at all. Returns
+/// false, leaving both unset, when no lane can have a root ahead of its ray.
+inline bool first_roots(const RayLanes& ray, const SphereLanes& sphere, __m256& t,
+                        __m256& has_roots) {
+  const __m256 fx = _mm256_sub_ps(ray.ox, sphere.cx);
+  const __m256 fy = _mm256_sub_ps(ray.oy, sphere.cy);
+  const __m256 fz = _mm256_sub_ps(ray.oz, sphere.cz);
+  const __m256 r2 = sphere.r2;
   const __m256 b =
       _mm256_fmadd_ps(fx, ray.dx, _mm256_fmadd_ps(fy, ray.dy, _mm256_mul_ps(fz, ray.dz)));
   const __m256 px = _mm256_fnmadd_ps(b, ray.dx, fx);
@@ -192,15 +241,15 @@ inline bool first_roots(const RayLanes& ray, const SphereColumns& spheres, std::
 
 /// first_roots for anchored spheres: intersect_anchored_sphere, eight at a time, with the
 /// accurate form of the discriminant in each lane.
-inline bool first_roots(const RayLanes& ray, const AnchoredColumns& spheres, std::size_t base,
-                        __m256& t, __m256& has_roots) {
-  const __m256 gx = _mm256_sub_ps(ray.ox, _mm256_load_ps(spheres.ax + base));
-  const __m256 gy = _mm256_sub_ps(ray.oy, _mm256_load_ps(spheres.ay + base));
-  const __m256 gz = _mm256_sub_ps(ray.oz, _mm256_load_ps(spheres.az + base));
-  const __m256 mx = _mm256_load_ps(spheres.mx + base);
-  const __m256 my = _mm256_load_ps(spheres.my + base);
-  const __m256 mz = _mm256_load_ps(spheres.mz + base);
-  const __m256 r2 = _mm256_load_ps(spheres.r2 + base);
+inline bool first_roots(const RayLanes& ray, const AnchoredLanes& sphere, __m256& t,
+                        __m256& has_roots) {
+  const __m256 gx = _mm256_sub_ps(ray.ox, sphere.ax);
+  const __m256 gy = _mm256_sub_ps(ray.oy, sphere.ay);
+  const __m256 gz = _mm256_sub_ps(ray.oz, sphere.az);
+  const __m256 mx = sphere.mx;
+  const __m256 my = sphere.my;
+  const __m256 mz = sphere.mz;
+  const __m256 r2 = sphere.r2;
   const __m256 fx = _mm256_add_ps(gx, mx);
   const __m256 fy = _mm256_add_ps(gy, my);
   const __m256 fz = _mm256_add_ps(gz, mz);
@@ -234,24 +283,33 @@ inline __m256 comes_before(const HitLanes& a, const HitLanes& b) {
   return _mm256_or_ps(_mm256_cmp_ps(a.t, b.t, _CMP_LT_OQ), tie);
 }
 
-/// test_sphere for the eight spheres at `base`, each lane keeping its own best.
-template <class Columns>
-inline bool test_8_spheres(const RayLanes& ray, const Columns& spheres, std::size_t base,
-                           HitLanes& best) {
+/// test_sphere for the ray and sphere (of id `ids`) of each lane, each lane keeping its own
+/// best; returns the lanes whose best it changed (bit i for lane i).
+template <class Lanes>
+inline int test_lanes(const RayLanes& ray, const Lanes& spheres, __m256i ids, HitLanes& best) {
   __m256 t, has_roots;
-  if (!first_roots(ray, spheres, base, t, has_roots)) return false;
-  const HitLanes candidate(t,
-                           _mm256_load_si256(reinterpret_cast<const __m256i*>(spheres.id + base)));
+  if (!first_roots(ray, spheres, t, has_roots)) return 0;
+  const HitLanes candidate(t, ids);
   const __m256 is_origin_sphere =
       _mm256_castsi256_ps(_mm256_cmpeq_epi32(candidate.sphere, ray.origin_sphere));
   const __m256 wins = _mm256_and_ps(
       _mm256_andnot_ps(is_origin_sphere, has_roots),
       _mm256_and_ps(_mm256_cmp_ps(t, ray.t_min, _CMP_GT_OQ), comes_before(candidate, best)));
-  if (_mm256_movemask_ps(wins) == 0) return false;
+  const int won = _mm256_movemask_ps(wins);
+  if (won == 0) return 0;
   best.t = _mm256_blendv_ps(best.t, candidate.t, wins);
   best.sphere = _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(best.sphere),
                                                      _mm256_castsi256_ps(candidate.sphere), wins));
-  return true;
+  return won;
+}
+
+/// test_sphere for the eight spheres at `base`, each lane keeping its own best.
+template <class Columns>
+inline bool test_8_spheres(const RayLanes& ray, const Columns& spheres, std::size_t base,
+                           HitLanes& best) {
+  return test_lanes(ray, load_lanes(spheres, base),
+                    _mm256_load_si256(reinterpret_cast<const __m256i*>(spheres.id + base)),
+                    best) != 0;
 }
 
 /// The first of the lanes' hits in hit order.

@@ -18,6 +18,7 @@
 
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_batch.hpp"
+#include "glint/geometry/ray_batch_kernel.hpp"
 #include "glint/geometry/ray_sphere.hpp"
 #include "glint/geometry/sphere_bvh.hpp"
 #include "glint/geometry/sphere_set.hpp"
@@ -120,7 +121,38 @@ class Scene {
   /// closest_hit for each active lane of `rays`: its hit in `hits` (t = kInfinity and
   /// kNoSphere where there is none); returns the lanes with a hit. Exactly closest_hit's answer
   /// lane by lane. Inactive lanes of `hits` are left as they were.
+  ///
+  /// With AVX2 the walls and the linear set are scanned for the eight rays at once
+  /// (ray_batch_kernel.hpp) and the BVH traversed as a packet for coherent batches
+  /// (SphereBvh::closest_hits); without, this is closest_hit lane by lane.
   LaneMask closest_hits(const RayBatch& rays, LaneMask active, HitBatch& hits) const {
+#ifdef GLINT_AVX2
+    // closest_hit's steps, each for all lanes: the origin sphere, the linear sets, the BVH.
+    SphereHit hit[RayBatch::kWidth];
+    LaneMask found = 0;
+    for_each_lane(active, [&](int lane) {
+      const Ray ray = rays.get(lane);
+      hit[lane].t = ray.t_max;
+      if (origin_sphere_hit(ray, hit[lane])) found |= LaneMask(1) << lane;
+    });
+    if (!walls_.empty() || !linear_.empty()) {
+      // Lanes without a ray have nothing to beat -infinity.
+      SphereHit bound[RayBatch::kWidth];
+      for (int lane = 0; lane < RayBatch::kWidth; ++lane)
+        bound[lane] = (active >> lane) & 1u ? hit_to_beat(rays.get(lane), hit[lane])
+                                            : SphereHit{-kInfinity, 0};
+      avx2::HitLanes best = avx2::hit_lanes(bound);
+      const LaneMask linear_found =
+          avx2::closest_hits(avx2::ray_lanes(rays), best, walls_.columns(), linear_.columns()) &
+          active;
+      avx2::store_lanes(best, linear_found, hit);
+      found |= linear_found;
+    }
+    if (!hierarchy_.empty()) found |= hierarchy_.closest_hits(rays, active, hit);
+    for_each_lane(
+        active, [&](int lane) { hits.set(lane, (found >> lane) & 1u ? hit[lane] : SphereHit{}); });
+    return found;
+#else
     LaneMask found = 0;
     for_each_lane(active, [&](int lane) {
       const std::optional<SphereHit> hit = closest_hit(rays.get(lane));
@@ -128,14 +160,40 @@ class Scene {
       if (hit) found |= LaneMask(1) << lane;
     });
     return found;
+#endif
   }
 
-  /// occluded for each active lane of `rays`: the lanes whose ray is blocked.
+  /// occluded for each active lane of `rays`: the lanes whose ray is blocked. With AVX2 in
+  /// the same way as closest_hits, each step for the lanes that no earlier one blocked.
   LaneMask occluded(const RayBatch& rays, LaneMask active) const {
     LaneMask blocked = 0;
+#ifdef GLINT_AVX2
+    for_each_lane(active, [&](int lane) {
+      const Ray ray = rays.get(lane);
+      SphereHit hit;
+      hit.t = ray.t_max;
+      if (origin_sphere_hit(ray, hit)) blocked |= LaneMask(1) << lane;
+    });
+    LaneMask pending = active & ~blocked;
+    if (pending != 0 && (!walls_.empty() || !linear_.empty())) {
+      // All lanes at once, coherent or not. This scan stops once every lane is blocked, the
+      // single-ray one at its ray's first blocker: for random shadow rays in a room of 40
+      // spheres it is 0.92x as fast as eight single-ray queries, but a scan per lane measured
+      // no better (0.88x, its overhead); for shadow rays of camera blocks it is 1.4x.
+      SphereHit bound[RayBatch::kWidth];
+      for (int lane = 0; lane < RayBatch::kWidth; ++lane)
+        bound[lane] = (pending >> lane) & 1u ? hit_to_beat(rays.get(lane), SphereHit{})
+                                             : SphereHit{-kInfinity, 0};
+      blocked |= avx2::any_hits(avx2::ray_lanes(rays), avx2::hit_lanes(bound), pending,
+                                walls_.columns(), linear_.columns());
+      pending = active & ~blocked;
+    }
+    if (pending != 0 && !hierarchy_.empty()) blocked |= hierarchy_.any_hits(rays, pending);
+#else
     for_each_lane(active, [&](int lane) {
       if (occluded(rays.get(lane))) blocked |= LaneMask(1) << lane;
     });
+#endif
     return blocked;
   }
 
@@ -146,20 +204,40 @@ class Scene {
     return {point, normal, normal, hit.sphere};
   }
 
-  const SurfaceProperties& surface(std::uint32_t sphere) const { return surfaces_[sphere]; }
-  std::size_t sphere_count() const { return surfaces_.size(); }
+  const SurfaceProperties& surface(std::uint32_t sphere) const {
+    return surfaces_[sphere];
+  }
+  std::size_t sphere_count() const {
+    return surfaces_.size();
+  }
   /// The line of the scene file that defined a sphere (0 if it did not come from a file).
-  int sphere_line(std::uint32_t sphere) const { return sphere_lines_[sphere]; }
-  const std::vector<PointLight>& lights() const { return lights_; }
+  int sphere_line(std::uint32_t sphere) const {
+    return sphere_lines_[sphere];
+  }
+  const std::vector<PointLight>& lights() const {
+    return lights_;
+  }
   /// The emissive spheres, for light sampling.
-  const EmitterTable& emitters() const { return emitters_; }
-  const CameraDescription& camera() const { return camera_; }
-  Color background() const { return background_; }
+  const EmitterTable& emitters() const {
+    return emitters_;
+  }
+  const CameraDescription& camera() const {
+    return camera_;
+  }
+  Color background() const {
+    return background_;
+  }
   /// The image settings and pixel filter width the scene asks for.
-  const ImageDescription& image() const { return image_; }
-  float antialias_sigma() const { return antialias_sigma_; }
+  const ImageDescription& image() const {
+    return image_;
+  }
+  float antialias_sigma() const {
+    return antialias_sigma_;
+  }
   /// The file name (or label) the scene came from, for error messages.
-  const std::string& source() const { return source_; }
+  const std::string& source() const {
+    return source_;
+  }
 
   /// Scenes up to this many spheres are scanned linearly: with SIMD, that beats a hierarchy.
   /// (Their walls, like those of larger scenes, are in the WallSet.)
