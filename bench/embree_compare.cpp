@@ -276,19 +276,21 @@ struct Row {
 
 std::string format_row(const Row& r) {
   char line[512];
+  // Each library at its best: one ray at a time or eight, whichever is faster on the row.
+  const double best_glint = std::max(r.glint_mrays, r.glint8_mrays);
   const double best_embree = std::max(r.embree1_mrays, r.embree8_mrays);
   std::snprintf(line, sizeof line,
                 "| %s | %zu | %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.2f | "
                 "%.4f%% |",
                 r.scene.c_str(), r.spheres, r.rays.c_str(), r.threads, r.glint_mrays,
-                r.glint8_mrays, r.embree1_mrays, r.embree8_mrays, r.glint_mrays / best_embree,
+                r.glint8_mrays, r.embree1_mrays, r.embree8_mrays, best_glint / best_embree,
                 r.glint_build, r.embree_build, r.embree_build / r.glint_build, 100.0 * r.agreement);
   return line;
 }
 
 const char* kHeader =
     "| scene | spheres | rays | threads | glint Mrays/s | glint 8 Mrays/s | Embree 1 Mrays/s | "
-    "Embree 8 Mrays/s | glint / best Embree | glint build s | Embree build s | "
+    "Embree 8 Mrays/s | best glint / best Embree | glint build s | Embree build s | "
     "Embree / glint build | hits agree |\n"
     "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|";
 
