@@ -122,7 +122,7 @@ class WavefrontExecution {
     std::vector<Color> throughput;
     std::vector<Color> radiance;
     std::vector<int> depth;
-    std::vector<std::uint32_t> sample;  ///< the path's sample, numbered within the tile's work
+    std::vector<std::uint64_t> sample;  ///< the path's sample, numbered within the tile's work
     std::vector<Origin> from;
     std::vector<SamplerType> sampler;
 
@@ -153,14 +153,15 @@ class WavefrontExecution {
   void render_tile(ThreadState& state, const Tile& tile, int first, int last, PixelSums& sums,
                    TraceCounters& counters, std::atomic<std::uint64_t>& progress,
                    std::uint64_t& samples) const {
-    const auto per_pixel = std::uint32_t(last - first);
-    const auto total = std::uint32_t(tile.pixel_count()) * per_pixel;
+    // In 64 bits: a tile of 1024x1024 pixels times a pass of up to 2^20 samples is 2^40.
+    const auto per_pixel = std::uint64_t(last - first);
+    const auto total = std::uint64_t(tile.pixel_count()) * per_pixel;
     const PieceLayout piece{tile, first, per_pixel};
-    std::uint32_t started = 0;
-    std::uint32_t summed = 0;
+    std::uint64_t started = 0;
+    std::uint64_t summed = 0;
     int live = 0;
     for (;;) {
-      while (live < kPaths && started < total && started - summed < std::uint32_t(kWindow))
+      while (live < kPaths && started < total && started - summed < std::uint64_t(kWindow))
         start_path(state, live++, started++, piece);
       if (live == 0) break;
       trace_closest_hits(state, live, counters);
@@ -183,11 +184,13 @@ class WavefrontExecution {
   struct PieceLayout {
     Tile tile;
     int first;
-    std::uint32_t per_pixel;
+    std::uint64_t per_pixel;
 
-    int x(std::uint32_t n) const { return tile.x0 + int(n / per_pixel) % tile.width(); }
-    int y(std::uint32_t n) const { return tile.y0 + int(n / per_pixel) / tile.width(); }
-    std::uint32_t index(std::uint32_t n) const { return std::uint32_t(first) + n % per_pixel; }
+    int x(std::uint64_t n) const { return tile.x0 + int(n / per_pixel) % tile.width(); }
+    int y(std::uint64_t n) const { return tile.y0 + int(n / per_pixel) / tile.width(); }
+    std::uint32_t index(std::uint64_t n) const {
+      return std::uint32_t(std::uint64_t(first) + n % per_pixel);
+    }
   };
 
   static Ray ray_of(const ThreadState& state, int p) {
@@ -207,7 +210,7 @@ class WavefrontExecution {
 
   /// Path p starts sample n: the camera ray through its point of the pixel, as
   /// ScalarExecution::add_samples makes it.
-  GLINT_FLATTEN void start_path(ThreadState& state, int p, std::uint32_t n,
+  GLINT_FLATTEN void start_path(ThreadState& state, int p, std::uint64_t n,
                                 const PieceLayout& piece) const {
     const auto u = std::size_t(p);
     const int x = piece.x(n);
@@ -356,7 +359,7 @@ class WavefrontExecution {
         radiance += state.shading_throughput[u] *
                     ((pending & kEmitterVisible) ? state.emitter_light[u] : Color(0.0f));
       if (!state.ends[u]) continue;
-      const auto slot = std::size_t(state.sample[u] % std::uint32_t(kWindow));
+      const auto slot = std::size_t(state.sample[u] % std::uint64_t(kWindow));
       state.results[slot] = radiance;
       state.result_ready[slot] = 1;
       if (p != --live) move_path(state, live, p);
@@ -379,11 +382,11 @@ class WavefrontExecution {
   /// Adds the finished samples from `summed` on, in order, to their pixels' sums, up to the
   /// first one still in flight; returns where it stopped. A sample that is not finite is
   /// counted as invalid instead (ScalarExecution::add_samples's rule).
-  GLINT_STAGE static std::uint32_t add_finished(ThreadState& state, const PieceLayout& piece,
-                                                std::uint32_t summed, std::uint32_t started,
+  GLINT_STAGE static std::uint64_t add_finished(ThreadState& state, const PieceLayout& piece,
+                                                std::uint64_t summed, std::uint64_t started,
                                                 PixelSums& sums, TraceCounters& counters) {
     for (; summed < started; ++summed) {
-      const auto slot = std::size_t(summed % std::uint32_t(kWindow));
+      const auto slot = std::size_t(summed % std::uint64_t(kWindow));
       if (!state.result_ready[slot]) break;
       state.result_ready[slot] = 0;
       const Color& sample = state.results[slot];
