@@ -1,6 +1,6 @@
 #pragma once
 // WavefrontExecution<Config>: the execution model that advances many paths together. Each
-// thread keeps a batch of paths in flight, in structure-of-arrays form (PathBatch), and runs
+// thread keeps a batch of paths in flight, in structure-of-arrays form (ThreadState), and runs
 // every stage over the whole batch before the next: trace the rays to their closest hits eight
 // at a time, shade every hit (emission, the light rays to queue, the next direction, roulette),
 // trace the queued shadow and emitter rays eight at a time, add what they found, retire the
@@ -17,6 +17,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -405,3 +406,6 @@ class WavefrontExecution {
 };
 
 }  // namespace glint
+
+#undef GLINT_FLATTEN
+#undef GLINT_STAGE
