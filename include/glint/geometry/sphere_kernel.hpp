@@ -347,7 +347,8 @@ template <class... Columns>
 inline bool closest_hit(const Ray& ray, SphereHit& best, const Columns&... sets) {
   const RayLanes ray_lanes(ray);
   HitLanes lanes(best);
-  if (!(scan<false>(ray_lanes, sets, lanes) | ...)) return false;
+  // Every set is scanned (no short circuit): a later set may hold a nearer hit.
+  if (!(int(scan<false>(ray_lanes, sets, lanes)) | ...)) return false;
   best = first_in_hit_order(lanes);
   return true;
 }
