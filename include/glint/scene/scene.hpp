@@ -118,6 +118,28 @@ class Scene {
            (!hierarchy_.empty() && hierarchy_.any_hit(ray));
   }
 
+  SurfaceHit surface_hit(const Ray& ray, const SphereHit& hit) const {
+    const Vec3 point = ray.at(hit.t);
+    const Vec3& center = surfaces_[hit.sphere].center;
+    const Vec3 normal = glm::normalize(point - center);
+    return {point, normal, normal, hit.sphere};
+  }
+
+  const SurfaceProperties& surface(std::uint32_t sphere) const { return surfaces_[sphere]; }
+  std::size_t sphere_count() const { return surfaces_.size(); }
+  /// The line of the scene file that defined a sphere (0 if it did not come from a file).
+  int sphere_line(std::uint32_t sphere) const { return sphere_lines_[sphere]; }
+  const std::vector<PointLight>& lights() const { return lights_; }
+  /// The emissive spheres, for light sampling.
+  const EmitterTable& emitters() const { return emitters_; }
+  const CameraDescription& camera() const { return camera_; }
+  Color background() const { return background_; }
+  /// The image settings and pixel filter width the scene asks for.
+  const ImageDescription& image() const { return image_; }
+  float antialias_sigma() const { return antialias_sigma_; }
+  /// The file name (or label) the scene came from, for error messages.
+  const std::string& source() const { return source_; }
+
   /// closest_hit for each active lane of `rays`: its hit in `hits` (t = kInfinity and
   /// kNoSphere where there is none); returns the lanes with a hit. Exactly closest_hit's answer
   /// lane by lane. Inactive lanes of `hits` are left as they were.
@@ -127,6 +149,43 @@ class Scene {
   /// (SphereBvh::closest_hits); without, this is closest_hit lane by lane.
   LaneMask closest_hits(const RayBatch& rays, LaneMask active, HitBatch& hits) const {
 #ifdef GLINT_AVX2
+    return closest_hits_avx2(rays, active, hits);
+#else
+    return closest_hits_per_lane(rays, active, hits);
+#endif
+  }
+
+  /// occluded for each active lane of `rays`: the lanes whose ray is blocked. With AVX2 in
+  /// the same way as closest_hits, each step for the lanes that no earlier one blocked.
+  LaneMask occluded(const RayBatch& rays, LaneMask active) const {
+#ifdef GLINT_AVX2
+    return occluded_avx2(rays, active);
+#else
+    return occluded_per_lane(rays, active);
+#endif
+  }
+
+  /// The batched queries through the single-ray ones, lane by lane: the reference.
+  LaneMask closest_hits_per_lane(const RayBatch& rays, LaneMask active, HitBatch& hits) const {
+    LaneMask found = 0;
+    for_each_lane(active, [&](int lane) {
+      const std::optional<SphereHit> hit = closest_hit(rays.get(lane));
+      hits.set(lane, hit.value_or(SphereHit{}));
+      if (hit) found |= LaneMask(1) << lane;
+    });
+    return found;
+  }
+  LaneMask occluded_per_lane(const RayBatch& rays, LaneMask active) const {
+    LaneMask blocked = 0;
+    for_each_lane(active, [&](int lane) {
+      if (occluded(rays.get(lane))) blocked |= LaneMask(1) << lane;
+    });
+    return blocked;
+  }
+
+#ifdef GLINT_AVX2
+  /// The batched queries with each of the single-ray ones' steps run for all lanes at once.
+  LaneMask closest_hits_avx2(const RayBatch& rays, LaneMask active, HitBatch& hits) const {
     // closest_hit's steps, each for all lanes: the origin sphere, the linear sets, the BVH.
     SphereHit hit[RayBatch::kWidth];
     LaneMask found = 0;
@@ -136,11 +195,10 @@ class Scene {
       if (origin_sphere_hit(ray, hit[lane])) found |= LaneMask(1) << lane;
     });
     if (!walls_.empty() || !linear_.empty()) {
-      // Lanes without a ray have nothing to beat -infinity.
       SphereHit bound[RayBatch::kWidth];
-      for (int lane = 0; lane < RayBatch::kWidth; ++lane)
-        bound[lane] = (active >> lane) & 1u ? hit_to_beat(rays.get(lane), hit[lane])
-                                            : SphereHit{-kInfinity, 0};
+      lanes_without_a_ray(bound);
+      for_each_lane(active,
+                    [&](int lane) { bound[lane] = hit_to_beat(rays.get(lane), hit[lane]); });
       avx2::HitLanes best = avx2::hit_lanes(bound);
       const LaneMask linear_found =
           avx2::closest_hits(avx2::ray_lanes(rays), best, walls_.columns(), linear_.columns()) &
@@ -149,25 +207,18 @@ class Scene {
       found |= linear_found;
     }
     if (!hierarchy_.empty()) found |= hierarchy_.closest_hits(rays, active, hit);
+    const SphereHit none;
     for_each_lane(
-        active, [&](int lane) { hits.set(lane, (found >> lane) & 1u ? hit[lane] : SphereHit{}); });
+        active, [&](int lane) { hits.set(lane, ((found >> lane) & 1u) != 0 ? hit[lane] : none); });
     return found;
-#else
-    LaneMask found = 0;
-    for_each_lane(active, [&](int lane) {
-      const std::optional<SphereHit> hit = closest_hit(rays.get(lane));
-      hits.set(lane, hit.value_or(SphereHit{}));
-      if (hit) found |= LaneMask(1) << lane;
-    });
-    return found;
-#endif
   }
-
-  /// occluded for each active lane of `rays`: the lanes whose ray is blocked. With AVX2 in
-  /// the same way as closest_hits, each step for the lanes that no earlier one blocked.
-  LaneMask occluded(const RayBatch& rays, LaneMask active) const {
+  /// Every lane's bound to beat at -infinity, which no hit beats: lanes without a ray.
+  static void lanes_without_a_ray(SphereHit (&bound)[RayBatch::kWidth]) {
+    for (SphereHit& b : bound)
+      b = SphereHit{-kInfinity, 0};
+  }
+  LaneMask occluded_avx2(const RayBatch& rays, LaneMask active) const {
     LaneMask blocked = 0;
-#ifdef GLINT_AVX2
     for_each_lane(active, [&](int lane) {
       const Ray ray = rays.get(lane);
       SphereHit hit;
@@ -181,63 +232,17 @@ class Scene {
       // spheres it is 0.92x as fast as eight single-ray queries, but a scan per lane measured
       // no better (0.88x, its overhead); for shadow rays of camera blocks it is 1.4x.
       SphereHit bound[RayBatch::kWidth];
-      for (int lane = 0; lane < RayBatch::kWidth; ++lane)
-        bound[lane] = (pending >> lane) & 1u ? hit_to_beat(rays.get(lane), SphereHit{})
-                                             : SphereHit{-kInfinity, 0};
+      lanes_without_a_ray(bound);
+      for_each_lane(pending,
+                    [&](int lane) { bound[lane] = hit_to_beat(rays.get(lane), SphereHit{}); });
       blocked |= avx2::any_hits(avx2::ray_lanes(rays), avx2::hit_lanes(bound), pending,
                                 walls_.columns(), linear_.columns());
       pending = active & ~blocked;
     }
     if (pending != 0 && !hierarchy_.empty()) blocked |= hierarchy_.any_hits(rays, pending);
-#else
-    for_each_lane(active, [&](int lane) {
-      if (occluded(rays.get(lane))) blocked |= LaneMask(1) << lane;
-    });
-#endif
     return blocked;
   }
-
-  SurfaceHit surface_hit(const Ray& ray, const SphereHit& hit) const {
-    const Vec3 point = ray.at(hit.t);
-    const Vec3& center = surfaces_[hit.sphere].center;
-    const Vec3 normal = glm::normalize(point - center);
-    return {point, normal, normal, hit.sphere};
-  }
-
-  const SurfaceProperties& surface(std::uint32_t sphere) const {
-    return surfaces_[sphere];
-  }
-  std::size_t sphere_count() const {
-    return surfaces_.size();
-  }
-  /// The line of the scene file that defined a sphere (0 if it did not come from a file).
-  int sphere_line(std::uint32_t sphere) const {
-    return sphere_lines_[sphere];
-  }
-  const std::vector<PointLight>& lights() const {
-    return lights_;
-  }
-  /// The emissive spheres, for light sampling.
-  const EmitterTable& emitters() const {
-    return emitters_;
-  }
-  const CameraDescription& camera() const {
-    return camera_;
-  }
-  Color background() const {
-    return background_;
-  }
-  /// The image settings and pixel filter width the scene asks for.
-  const ImageDescription& image() const {
-    return image_;
-  }
-  float antialias_sigma() const {
-    return antialias_sigma_;
-  }
-  /// The file name (or label) the scene came from, for error messages.
-  const std::string& source() const {
-    return source_;
-  }
+#endif
 
   /// Scenes up to this many spheres are scanned linearly: with SIMD, that beats a hierarchy.
   /// (Their walls, like those of larger scenes, are in the WallSet.)
