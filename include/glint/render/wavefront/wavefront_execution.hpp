@@ -169,7 +169,7 @@ class WavefrontExecution {
       for (int p = 0; p < live; ++p)
         shade(state, p, counters);
       trace_shadow_rays(state);
-      trace_emitter_rays(state, counters);
+      trace_emitter_rays(state);
       live = gather_and_retire(state, live);
       summed = add_finished(state, piece, summed, started, sums, counters);
     }
@@ -329,7 +329,7 @@ class WavefrontExecution {
 
   /// Traces the queued emitter rays: the light arrives where the first sphere hit is the
   /// emitter (PathContext::sample_emitter's test).
-  GLINT_STAGE void trace_emitter_rays(ThreadState& state, TraceCounters&) const {
+  GLINT_STAGE void trace_emitter_rays(ThreadState& state) const {
     const int count = state.emitter_count;
     for (int base = 0; base < count; base += RayBatch::kWidth) {
       const auto block = std::size_t(base / RayBatch::kWidth);
