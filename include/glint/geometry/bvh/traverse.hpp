@@ -5,6 +5,7 @@
 // visited nearest first, and a subtree whose box starts beyond the best hit is skipped.
 
 #include <array>
+#include <bit>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
@@ -26,11 +27,19 @@ concept LeafTest = requires(F& test_leaf, std::uint32_t first, std::uint32_t cou
   { test_leaf(first, count, best) } -> std::same_as<bool>;
 };
 
-/// Entry distances into a wide node's boxes; +infinity where the ray misses the box within
-/// [t_min, t_max].
-inline void enter_boxes(const WideNode& node, const Vec3& origin, const Vec3& inverse_direction,
-                        float t_min, float t_max, float (&enter)[kWideWidth]) {
+/// The slots of a wide node that a ray enters (bit c for slot c), split by kind.
+struct EnteredSlots {
+  unsigned leaves = 0;
+  unsigned inner = 0;
+};
+
+/// Entry distances into a wide node's boxes, and the non-empty slots whose box the ray enters
+/// within [t_min, t_max]; enter[c] is meaningful for those slots only.
+inline EnteredSlots enter_boxes(const WideNode& node, const Vec3& origin,
+                                const Vec3& inverse_direction, float t_min, float t_max,
+                                float (&enter)[kWideWidth]) {
   static_assert(kWideWidth == 8);
+  unsigned entered = 0, empty = 0, leaves = 0;
 #if defined(GLINT_AVX2)
   const __m256 ox = _mm256_set1_ps(origin.x), oy = _mm256_set1_ps(origin.y),
                oz = _mm256_set1_ps(origin.z);
@@ -46,8 +55,14 @@ inline void enter_boxes(const WideNode& node, const Vec3& origin, const Vec3& in
                                     _mm256_max_ps(_mm256_min_ps(az, bz), _mm256_set1_ps(t_min)));
   const __m256 far = _mm256_min_ps(_mm256_min_ps(_mm256_max_ps(ax, bx), _mm256_max_ps(ay, by)),
                                    _mm256_min_ps(_mm256_max_ps(az, bz), _mm256_set1_ps(t_max)));
-  _mm256_storeu_ps(enter, _mm256_blendv_ps(_mm256_set1_ps(kInfinity), near,
-                                           _mm256_cmp_ps(near, far, _CMP_LE_OQ)));
+  _mm256_storeu_ps(enter, near);
+  entered = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(near, far, _CMP_LE_OQ)));
+  const __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
+  const __m256i count = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.count));
+  empty = unsigned(
+      _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(child, _mm256_set1_epi32(-1)))));
+  leaves = unsigned(
+      _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(count, _mm256_setzero_si256()))));
 #elif defined(GLINT_SSE41)
   for (int half = 0; half < kWideWidth; half += 4) {
     const __m128 ox = _mm_set1_ps(origin.x), oy = _mm_set1_ps(origin.y), oz = _mm_set1_ps(origin.z);
@@ -63,8 +78,15 @@ inline void enter_boxes(const WideNode& node, const Vec3& origin, const Vec3& in
                                    _mm_max_ps(_mm_min_ps(az, bz), _mm_set1_ps(t_min)));
     const __m128 far = _mm_min_ps(_mm_min_ps(_mm_max_ps(ax, bx), _mm_max_ps(ay, by)),
                                   _mm_min_ps(_mm_max_ps(az, bz), _mm_set1_ps(t_max)));
-    _mm_storeu_ps(enter + half,
-                  _mm_blendv_ps(_mm_set1_ps(kInfinity), near, _mm_cmple_ps(near, far)));
+    _mm_storeu_ps(enter + half, near);
+    entered |= unsigned(_mm_movemask_ps(_mm_cmple_ps(near, far))) << half;
+    const __m128i child = _mm_load_si128(reinterpret_cast<const __m128i*>(node.child + half));
+    const __m128i count = _mm_load_si128(reinterpret_cast<const __m128i*>(node.count + half));
+    empty |= unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(child, _mm_set1_epi32(-1)))))
+             << half;
+    leaves |=
+        unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(count, _mm_setzero_si128()))))
+        << half;
   }
 #else
   for (int c = 0; c < kWideWidth; ++c) {
@@ -77,34 +99,38 @@ inline void enter_boxes(const WideNode& node, const Vec3& origin, const Vec3& in
     const float near =
         max_of(max_of(min_of(ax, bx), min_of(ay, by)), max_of(min_of(az, bz), t_min));
     const float far = min_of(min_of(max_of(ax, bx), max_of(ay, by)), min_of(max_of(az, bz), t_max));
-    enter[c] = near <= far ? near : kInfinity;
+    enter[c] = near;
+    entered |= unsigned(near <= far) << c;
+    empty |= unsigned(node.child[c] == kEmptySlot) << c;
+    leaves |= unsigned(node.count[c] > 0) << c;
   }
 #endif
+  entered &= ~empty;
+  return {entered & leaves, entered & ~leaves};
 }
 
-/// The slots of the children the ray enters, nearest first.
-struct ChildOrder {
-  int slot[kWideWidth];
-  int count = 0;
-};
-
-inline ChildOrder children_nearest_first(const WideNode& node, const float (&enter)[kWideWidth]) {
-  ChildOrder order;
-  for (int c = 0; c < kWideWidth; ++c) {
-    if (enter[c] == kInfinity || node.child[c] == kEmptySlot) continue;
-    int k = order.count++;
-    while (k > 0 && enter[order.slot[k - 1]] > enter[c]) {
-      order.slot[k] = order.slot[k - 1];
+/// The slots of `mask` in order of entry (ties in slot order) into slots[0, n); returns n.
+/// The masks of random rays hold one to three slots: an insertion sort of those alone costs
+/// a few well-predicted branches, where sorting all eight slots mispredicted one per slot.
+inline int nearest_first(const float (&enter)[kWideWidth], unsigned mask,
+                         int (&slots)[kWideWidth]) {
+  int n = 0;
+  for (; mask != 0; mask &= mask - 1) {
+    const int c = std::countr_zero(mask);
+    int k = n++;
+    while (k > 0 && enter[slots[k - 1]] > enter[c]) {
+      slots[k] = slots[k - 1];
       --k;
     }
-    order.slot[k] = c;
+    slots[k] = c;
   }
-  return order;
+  return n;
 }
 
 /// Traverses `nodes` (see collapse_to_wide), calling `test_leaf` for the leaves the ray may
 /// reach before `best`; returns whether any call found a hit. With kAnyHit it returns at the
-/// first such hit.
+/// first such hit. The nearest inner child entered is visited next without going through the
+/// stack; the others are pushed, the farthest first.
 ///
 /// Always inlined: left to itself, GCC keeps the traversal out of line in the path tracer,
 /// which changes the code it generates around the call there (which products it fuses into
@@ -123,34 +149,60 @@ template <bool kAnyHit, LeafTest TestLeaf>
   // Each level pushes at most kWideWidth - 1 more nodes than it pops, and the depth is bounded.
   std::array<Pending, (kWideWidth - 1) * (kMaxDepth + 2)> stack;
   int top = 0;
-  stack[std::size_t(top++)] = Pending{0, ray.t_min};
+  std::uint32_t current = 0;
   bool found = false;
-  while (top > 0) {
-    const Pending pending = stack[std::size_t(--top)];
-    if (pending.enter > nearest.t) continue;
-    const WideNode& node = nodes[pending.node];
-    float enter[kWideWidth];
-    enter_boxes(node, ray.origin, inverse_direction, ray.t_min, nearest.t, enter);
-    const ChildOrder order = children_nearest_first(node, enter);
-    for (int k = 0; k < order.count; ++k) {
-      const int c = order.slot[k];
-      if (node.count[c] == 0 || enter[c] > nearest.t) continue;
-      if (!test_leaf(node.child[c], node.count[c], nearest)) continue;
-      found = true;
-      if constexpr (kAnyHit) {
-        best = nearest;
-        return true;
+  for (;;) {
+    const WideNode& node = nodes[current];
+    alignas(32) float enter[kWideWidth];
+    const EnteredSlots entered =
+        enter_boxes(node, ray.origin, inverse_direction, ray.t_min, nearest.t, enter);
+    int slots[kWideWidth];
+    if (entered.leaves != 0) {
+      const int n = nearest_first(enter, entered.leaves, slots);
+      for (int k = 0; k < n; ++k) {
+        const int c = slots[k];
+        if (enter[c] > nearest.t) break;  // and so are the farther ones
+        if (!test_leaf(node.child[c], node.count[c], nearest)) continue;
+        found = true;
+        if constexpr (kAnyHit) {
+          best = nearest;
+          return true;
+        }
       }
     }
-    // Farthest pushed first, so that the nearest is popped next.
-    for (int k = order.count - 1; k >= 0; --k) {
-      const int c = order.slot[k];
-      if (node.count[c] == 0 && enter[c] <= nearest.t)
-        stack[std::size_t(top++)] = Pending{node.child[c], enter[c]};
+    unsigned inner = entered.inner;
+    if (inner != 0 && (inner & (inner - 1)) == 0) {  // one inner child: no sorting, no stack
+      const int c = std::countr_zero(inner);
+      if (enter[c] <= nearest.t) {
+        current = node.child[c];
+        continue;
+      }
+    } else if (inner != 0) {
+      const int n = nearest_first(enter, inner, slots);
+      // Farthest pushed first, so that the nearest is popped next; the nearest is visited now.
+      int k = n - 1;
+      while (k > 0 && enter[slots[k]] > nearest.t)
+        --k;
+      if (enter[slots[0]] <= nearest.t) {
+        for (; k > 0; --k)
+          stack[std::size_t(top++)] = Pending{node.child[slots[k]], enter[slots[k]]};
+        current = node.child[slots[0]];
+        continue;
+      }
+    }
+    // The next node on the stack that the ray may reach before its best hit.
+    for (;;) {
+      if (top == 0) {
+        best = nearest;
+        return found;
+      }
+      const Pending pending = stack[std::size_t(--top)];
+      if (pending.enter <= nearest.t) {
+        current = pending.node;
+        break;
+      }
     }
   }
-  best = nearest;
-  return found;
 }
 
 }  // namespace glint::bvh
