@@ -156,3 +156,171 @@ TEST_CASE("a tree built on several cores is the tree built on one", "[bvh]") {
     CHECK(same_spheres);
   }
 }
+
+namespace {
+
+/// Rays that stress the leaf cull: grazing a sphere (passing at exactly its radius, and a
+/// hair inside and outside), leaving one from its surface, from inside nested spheres, far
+/// from a huge one.
+std::vector<glint::Ray> hard_rays(const std::vector<SphereBvh::Input>& spheres, glint::Pcg32& rng,
+                                  float extent, int count) {
+  std::vector<glint::Ray> rays;
+  for (int i = 0; i < count; ++i) {
+    const SphereBvh::Input& s = spheres[rng.next_u32() % spheres.size()];
+    glint::Ray ray;
+    ray.direction = random_direction(rng);
+    // A unit vector perpendicular to the direction.
+    const Vec3 side = glm::normalize(glm::cross(
+        ray.direction, std::abs(ray.direction.x) < 0.9f ? Vec3(1, 0, 0) : Vec3(0, 1, 0)));
+    switch (i % 4) {
+      case 0: {  // grazing: the ray's closest approach to the centre is (about) the radius
+        const float scale = 1.0f + (rng.next_float() - 0.5f) * 2e-6f;
+        ray.origin =
+            s.center + side * (s.radius * scale) - ray.direction * (2.0f * s.radius + 1.0f);
+        break;
+      }
+      case 1: {  // leaving the sphere from its surface
+        ray.origin = s.center + random_direction(rng) * s.radius;
+        ray.origin_sphere = s.id;
+        break;
+      }
+      case 2:  // from the centre (inside, and inside any sphere nested around it)
+        ray.origin = s.center;
+        break;
+      default:  // anywhere, far
+        ray.origin = random_point(rng, 3.0f * extent);
+        break;
+    }
+    if (i % 7 == 0) ray.t_max = rng.next_float() * extent;
+    rays.push_back(ray);
+  }
+  return rays;
+}
+
+}  // namespace
+
+TEST_CASE("bvh matches brute force on grazing, leaving, nested and huge-sphere rays", "[bvh]") {
+  glint::Pcg32 rng(21, 5);
+  std::vector<SphereBvh::Input> spheres;
+  for (std::uint32_t i = 0; i < 2000; ++i)
+    spheres.push_back({random_point(rng, 100.0f), 0.2f + 5.0f * rng.next_float(), i});
+  for (std::uint32_t i = 0; i < 40; ++i)  // nested around one centre
+    spheres.push_back({Vec3(3.0f, -2.0f, 1.0f), 0.5f + 0.5f * float(i), 2000 + i});
+  spheres.push_back({Vec3(0.0f, -1e5f - 60.0f, 0.0f), 1e5f, 3000});  // a huge wall
+  spheres.push_back({Vec3(5.0f, 5.0f, 5.0f), 2.0f, 3001});           // duplicates: a tie
+  spheres.push_back({Vec3(5.0f, 5.0f, 5.0f), 2.0f, 3002});
+  const SphereBvh bvh(spheres);
+  const Reference reference{spheres};
+  int hits = 0;
+  for (const glint::Ray& ray : hard_rays(spheres, rng, 100.0f, 20000)) {
+    const glint::SphereHit expected = reference.closest(ray);
+    glint::SphereHit actual;
+    actual.t = ray.t_max;
+    const bool found = bvh.closest_hit(ray, actual);
+    REQUIRE(found == (expected.sphere != glint::kNoSphere));
+    if (found) {
+      ++hits;
+      REQUIRE(actual.sphere == expected.sphere);
+      REQUIRE(std::memcmp(&actual.t, &expected.t, sizeof(float)) == 0);
+    }
+    REQUIRE(bvh.any_hit(ray) == found);
+  }
+  CHECK(hits > 10000);
+}
+
+TEST_CASE("the leaf groups hold each leaf's spheres, as the binary tree has them", "[bvh]") {
+  glint::Pcg32 rng(31, 1);
+  std::vector<SphereBvh::Input> spheres;
+  for (std::uint32_t i = 0; i < 5000; ++i)
+    spheres.push_back({random_point(rng, 300.0f), 0.1f + 3.0f * rng.next_float(), i * 2 + 1});
+  glint::bvh::BinaryTree tree = glint::bvh::build_binary_tree(spheres, 1);
+  std::vector<glint::bvh::WideNode> wide = glint::bvh::collapse_to_wide(tree.nodes);
+  const std::vector<glint::bvh::WideNode> before = wide;
+  const std::vector<glint::SphereGroup> groups = glint::bvh::group_leaves(wide, tree.spheres);
+  const glint::GroupedSpheres grouped{groups.data()};
+  std::size_t leaf_spheres = 0;
+  std::vector<bool> group_used(groups.size(), false);
+  for (std::size_t n = 0; n < wide.size(); ++n)
+    for (int c = 0; c < glint::bvh::kWideWidth; ++c) {
+      const std::uint32_t count = wide[n].count[c];
+      if (count == 0) {  // inner and empty slots keep their child
+        REQUIRE(wide[n].child[c] == before[n].child[c]);
+        continue;
+      }
+      const std::uint32_t first = wide[n].child[c];
+      REQUIRE(first % glint::SphereGroup::kSize == 0);
+      REQUIRE(count <= 2 * glint::bvh::kMaxLeafSize);
+      for (std::uint32_t i = 0; i < count; ++i) {
+        const glint::bvh::LeafSphere& s = tree.spheres[before[n].child[c] + i];
+        REQUIRE(grouped.id(first + i) == s.id);
+        REQUIRE(grouped.center(first + i) == s.center);
+        REQUIRE(grouped.radius_squared(first + i) == s.radius * s.radius);
+        // Every sphere inside its leaf's box.
+        for (int axis = 0; axis < 3; ++axis) {
+          const float lower[3] = {wide[n].lower_x[c], wide[n].lower_y[c], wide[n].lower_z[c]};
+          const float upper[3] = {wide[n].upper_x[c], wide[n].upper_y[c], wide[n].upper_z[c]};
+          REQUIRE(lower[axis] <= s.center[axis] - s.radius);
+          REQUIRE(upper[axis] >= s.center[axis] + s.radius);
+        }
+      }
+      for (std::uint32_t g = first / 8; g < (first + count + 7) / 8; ++g) {
+        REQUIRE_FALSE(group_used[g]);  // no two leaves share a group
+        group_used[g] = true;
+      }
+      // The lanes past the leaf's last sphere are padding.
+      for (std::uint32_t i = first + count; i % glint::SphereGroup::kSize != 0; ++i)
+        REQUIRE(grouped.id(i) == glint::kNoSphere);
+      leaf_spheres += count;
+    }
+  CHECK(leaf_spheres == spheres.size());
+}
+
+TEST_CASE("test_grouped_spheres answers as test_spheres, bit for bit", "[bvh]") {
+  // Groups of spheres of very different sizes, against rays that graze, leave, start inside
+  // or far away; the AVX2 cull must never drop a sphere that test_sphere would hit.
+  glint::Pcg32 rng(41, 2);
+  std::vector<SphereBvh::Input> spheres;
+  for (std::uint32_t i = 0; i < 16 * 64; ++i) {
+    const float radius =
+        i % 97 == 0 ? 1e4f : (i % 13 == 0 ? 1e-3f : 0.05f + 4.0f * rng.next_float());
+    spheres.push_back({random_point(rng, 60.0f), radius, i});
+  }
+  std::vector<glint::SphereGroup> groups(spheres.size() / 8);
+  std::vector<glint::bvh::LeafSphere> flat;
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    glint::SphereGroup& g = groups[i / 8];
+    g.cx[i % 8] = spheres[i].center.x;
+    g.cy[i % 8] = spheres[i].center.y;
+    g.cz[i % 8] = spheres[i].center.z;
+    g.radius[i % 8] = spheres[i].radius;
+    g.id[i % 8] = spheres[i].id;
+    flat.push_back({spheres[i].center, spheres[i].radius, spheres[i].id});
+  }
+  struct Flat {
+    const glint::bvh::LeafSphere* s;
+    Vec3 center(std::size_t i) const { return s[i].center; }
+    float radius_squared(std::size_t i) const { return s[i].radius * s[i].radius; }
+    std::uint32_t id(std::size_t i) const { return s[i].id; }
+  };
+  int hits = 0;
+  for (const glint::Ray& ray : hard_rays(spheres, rng, 60.0f, 4000)) {
+    const glint::GroupRay lanes(ray);
+    for (std::size_t first = 0; first < spheres.size(); first += 16) {
+      const std::size_t count = 1 + rng.next_u32() % 16;
+      for (const bool stop : {false, true}) {
+        glint::SphereHit expected, actual;
+        expected.t = actual.t = ray.t_max;
+        const bool expected_found =
+            glint::test_spheres(ray, Flat{flat.data()}, first, first + count, expected, stop);
+        const bool found =
+            glint::test_grouped_spheres(ray, lanes, groups.data(), first, count, actual, stop);
+        // With `stop` both return at the first sphere in index order that test_sphere takes.
+        REQUIRE(found == expected_found);
+        REQUIRE(actual.sphere == expected.sphere);
+        REQUIRE(std::memcmp(&actual.t, &expected.t, sizeof(float)) == 0);
+        hits += found ? 1 : 0;
+      }
+    }
+  }
+  CHECK(hits > 1000);
+}

@@ -2,7 +2,9 @@
 // A bounding volume hierarchy over spheres, for scenes too large for a linear SIMD scan: a
 // binary tree built with a binned surface area heuristic (bvh/build.hpp), collapsed into a
 // wide tree for traversal (bvh/wide.hpp, bvh/traverse.hpp), whose leaves are tested by the
-// leaf kernel that SphereSet uses too (sphere_kernel.hpp).
+// leaf kernel that SphereSet uses too (sphere_kernel.hpp). The leaves' spheres are stored in
+// groups of eight (bvh/leaf_groups.hpp): a single ray culls a group with one AVX2 pass and
+// runs test_sphere on the few spheres left, so its hits are test_sphere's, bit for bit.
 
 #include <cstddef>
 #include <cstdint>
@@ -13,6 +15,7 @@
 
 #include "glint/geometry/accelerator.hpp"
 #include "glint/geometry/bvh/build.hpp"
+#include "glint/geometry/bvh/leaf_groups.hpp"
 #include "glint/geometry/bvh/packet.hpp"
 #include "glint/geometry/bvh/traverse.hpp"
 #include "glint/geometry/bvh/wide.hpp"
@@ -30,7 +33,9 @@ class SphereBvh {
   SphereBvh() = default;
   /// Built on up to `cores` cores (0: all there are), into the same tree whatever their number.
   explicit SphereBvh(std::vector<Input> spheres, std::size_t cores = 0)
-      : tree_(bvh::build_binary_tree(spheres, cores)), wide_(bvh::collapse_to_wide(tree_.nodes)) {}
+      : tree_(bvh::build_binary_tree(spheres, cores)),
+        wide_(bvh::collapse_to_wide(tree_.nodes)),
+        leaves_(bvh::group_leaves(wide_, tree_.spheres)) {}
 
   std::size_t size() const { return tree_.spheres.size(); }
   bool empty() const { return tree_.spheres.empty(); }
@@ -149,20 +154,13 @@ class SphereBvh {
   }
 
  private:
-  /// The leaf spheres as the leaf kernel reads them.
-  struct LeafSpheres {
-    const bvh::LeafSphere* spheres;
-    Vec3 center(std::size_t i) const { return spheres[i].center; }
-    float radius_squared(std::size_t i) const { return spheres[i].radius * spheres[i].radius; }
-    std::uint32_t id(std::size_t i) const { return spheres[i].id; }
-  };
-
   template <bool kAnyHit>
   bool traverse(const Ray& ray, SphereHit& best) const {
-    const LeafSpheres leaves{tree_.spheres.data()};
+    const SphereGroup* groups = leaves_.data();
+    const GroupRay lanes(ray);
     return bvh::traverse<kAnyHit>(
         wide_, ray, best, [&](std::uint32_t first, std::uint32_t count, SphereHit& leaf_best) {
-          return test_spheres(ray, leaves, first, first + count, leaf_best, kAnyHit);
+          return test_grouped_spheres(ray, lanes, groups, first, count, leaf_best, kAnyHit);
         });
   }
 
@@ -171,7 +169,7 @@ class SphereBvh {
   LaneMask traverse_packet(const RayBatch& rays, LaneMask active,
                            const Ray (&lane_rays)[RayBatch::kWidth],
                            SphereHit (&best)[RayBatch::kWidth]) const {
-    const LeafSpheres leaves{tree_.spheres.data()};
+    const GroupedSpheres leaves{leaves_.data()};
     return bvh::traverse_packet<kAnyHit>(
         wide_, rays, active, best,
         [&](int lane, std::uint32_t first, std::uint32_t count, SphereHit& leaf_best) {
@@ -182,6 +180,7 @@ class SphereBvh {
 
   bvh::BinaryTree tree_;             // building and box queries
   std::vector<bvh::WideNode> wide_;  // ray traversal
+  std::vector<SphereGroup> leaves_;  // the wide tree's leaves (bvh/leaf_groups.hpp)
 };
 
 static_assert(SphereAccelerator<SphereBvh>);

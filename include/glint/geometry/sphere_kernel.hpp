@@ -93,6 +93,38 @@ bool test_spheres(const Ray& ray, const Spheres& spheres, std::size_t begin, std
   return found;
 }
 
+/// Spheres in groups of eight, structure-of-arrays within a group (the leaves of SphereBvh):
+/// one AVX2 pass culls a group's spheres (avx2::may_meet), test_sphere decides for the rest.
+/// A group holds the spheres of one leaf, or of the first or last eight of one; its lanes past
+/// them are padding, never read as spheres.
+struct alignas(32) SphereGroup {
+  static constexpr std::size_t kSize = 8;
+  float cx[kSize], cy[kSize], cz[kSize];
+  float radius[kSize];
+  std::uint32_t id[kSize];
+};
+static_assert(sizeof(SphereGroup) == 160);
+
+/// SphereGroups as test_spheres reads them: sphere i is lane i % 8 of group i / 8. The centre,
+/// the radius and its square are those of the sphere as given, so that test_sphere answers
+/// bit for bit as for any other storage of the same spheres.
+struct GroupedSpheres {
+  const SphereGroup* groups;
+
+  Vec3 center(std::size_t i) const {
+    const SphereGroup& g = groups[i / SphereGroup::kSize];
+    const std::size_t lane = i % SphereGroup::kSize;
+    return {g.cx[lane], g.cy[lane], g.cz[lane]};
+  }
+  float radius_squared(std::size_t i) const {
+    const float r = groups[i / SphereGroup::kSize].radius[i % SphereGroup::kSize];
+    return r * r;
+  }
+  std::uint32_t id(std::size_t i) const {
+    return groups[i / SphereGroup::kSize].id[i % SphereGroup::kSize];
+  }
+};
+
 #ifdef GLINT_AVX2
 namespace avx2 {
 
@@ -328,6 +360,31 @@ inline SphereHit first_in_hit_order(const HitLanes& lanes) {
   return first;
 }
 
+/// The lanes of `group` (bit i for lane i) whose sphere the ray may meet: a superset of those
+/// in which test_sphere finds roots. The discriminant r^2 - |f - (f.d)d|^2 of test_sphere, eight
+/// at once, in its own order of fused operations; each lane's differs from test_sphere's by a
+/// few ulps of |f|^2 + r^2 (f = origin - centre, exact in both; d unit length), and a lane is
+/// culled only when its discriminant is below -2^-12 (|f|^2 + r^2), thousands of times those.
+/// NaN keeps a lane. Most lanes of an incoherent ray's leaf are culled; the few kept cost one
+/// scalar test each.
+inline unsigned may_meet(const RayLanes& ray, const SphereGroup& group) {
+  const __m256 fx = _mm256_sub_ps(ray.ox, _mm256_load_ps(group.cx));
+  const __m256 fy = _mm256_sub_ps(ray.oy, _mm256_load_ps(group.cy));
+  const __m256 fz = _mm256_sub_ps(ray.oz, _mm256_load_ps(group.cz));
+  const __m256 r = _mm256_load_ps(group.radius);
+  const __m256 b =
+      _mm256_fmadd_ps(fx, ray.dx, _mm256_fmadd_ps(fy, ray.dy, _mm256_mul_ps(fz, ray.dz)));
+  const __m256 px = _mm256_fnmadd_ps(b, ray.dx, fx);
+  const __m256 py = _mm256_fnmadd_ps(b, ray.dy, fy);
+  const __m256 pz = _mm256_fnmadd_ps(b, ray.dz, fz);
+  const __m256 perp2 = _mm256_fmadd_ps(px, px, _mm256_fmadd_ps(py, py, _mm256_mul_ps(pz, pz)));
+  const __m256 f2 = _mm256_fmadd_ps(fx, fx, _mm256_fmadd_ps(fy, fy, _mm256_mul_ps(fz, fz)));
+  const __m256 r2 = _mm256_mul_ps(r, r);
+  const __m256 discriminant = _mm256_sub_ps(r2, perp2);
+  const __m256 margin = _mm256_mul_ps(_mm256_add_ps(f2, r2), _mm256_set1_ps(-0x1p-12f));
+  return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(discriminant, margin, _CMP_NLT_UQ)));
+}
+
 /// test_8_spheres over all of `spheres`; with kAnyHit, stops at the first group with a hit.
 template <bool kAnyHit, class Columns>
 inline bool scan(const RayLanes& ray, const Columns& spheres, HitLanes& best) {
@@ -363,5 +420,42 @@ inline bool any_hit(const Ray& ray, const SphereHit& bound, const Columns&... se
 
 }  // namespace avx2
 #endif
+
+/// What test_grouped_spheres needs of a ray besides the ray: with AVX2 the ray in every lane.
+#ifdef GLINT_AVX2
+using GroupRay = avx2::RayLanes;
+#else
+struct GroupRay {
+  explicit GroupRay(const Ray&) {}
+};
+#endif
+
+/// test_spheres for spheres [first, first + count) of `groups`, `first` a multiple of eight:
+/// with AVX2, a group's spheres that the ray cannot meet (avx2::may_meet) are skipped before
+/// test_sphere, which decides for the others, so the answer is test_spheres' bit for bit.
+/// `lanes` is GroupRay(ray), made once per ray.
+inline bool test_grouped_spheres(const Ray& ray, [[maybe_unused]] const GroupRay& lanes,
+                                 const SphereGroup* groups, std::size_t first, std::size_t count,
+                                 SphereHit& best, bool stop_at_first) {
+  const GroupedSpheres spheres{groups};
+#ifdef GLINT_AVX2
+  bool found = false;
+  const std::size_t end = first + count;
+  for (std::size_t base = first; base < end; base += SphereGroup::kSize) {
+    const std::size_t size = end - base < SphereGroup::kSize ? end - base : SphereGroup::kSize;
+    unsigned candidates =
+        avx2::may_meet(lanes, groups[base / SphereGroup::kSize]) & ((1u << size) - 1u);
+    for (; candidates != 0; candidates &= candidates - 1) {
+      if (!test_sphere_at(ray, spheres, base + std::size_t(std::countr_zero(candidates)), best))
+        continue;
+      found = true;
+      if (stop_at_first) return true;
+    }
+  }
+  return found;
+#else
+  return test_spheres(ray, spheres, first, first + count, best, stop_at_first);
+#endif
+}
 
 }  // namespace glint
