@@ -46,9 +46,9 @@ struct fast_path_by_path : glint::variants::fast::with_fresnel<ScalarOnlyFresnel
   static constexpr glint::VariantInfo info{"fast_path_by_path", "`fast`, shaded path by path",
                                            true};
 };
-static_assert(!glint::WavefrontExecution<fast_path_by_path>::kShadesLanes);
+static_assert(!glint::WavefrontExecution<fast_path_by_path>::kUsesLanes);
 #if defined(GLINT_AVX2)
-static_assert(glint::WavefrontExecution<glint::variants::fast>::kShadesLanes);
+static_assert(glint::WavefrontExecution<glint::variants::fast>::kUsesLanes);
 #endif
 
 /// The chain variants, and `fast` shaded path by path: both ways of shading.

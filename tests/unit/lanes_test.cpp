@@ -16,10 +16,12 @@
 #include "glint/math/lanes.hpp"
 #include "glint/math/random.hpp"
 #include "glint/math/sampling.hpp"
+#include "glint/policy/antialiasing.hpp"
 #include "glint/policy/diffuse_sampling.hpp"
 #include "glint/policy/fresnel.hpp"
 #include "glint/policy/light_sampling.hpp"
 #include "glint/policy/path_termination.hpp"
+#include "glint/render/camera.hpp"
 
 // The lane-wise code exists only where the compiler targets AVX2 (see math/lanes.hpp).
 #if defined(GLINT_AVX2)
@@ -65,7 +67,8 @@ void check_close(const Vec3& lane, const Vec3& scalar, float tolerance) {
 
 }  // namespace
 
-TEST_CASE("sincos_lanes is within 2e-7 of sin and cos over [0, 2 pi] and beyond", "[lanes][unit]") {
+TEST_CASE("sincos_lanes is within 2e-7 of sin and cos from 0 to 2 pi, and close beyond",
+          "[lanes][unit]") {
   double worst = 0.0;
   const int steps = 1 << 16;
   for (int k = 0; k <= steps; k += kLaneCount) {
@@ -212,6 +215,81 @@ TEMPLATE_TEST_CASE("lane-wise path termination agrees with the scalar policy", "
     for (int i = 0; i < kLaneCount; ++i)
       CHECK(same_bits(lanes[i], TestType::continue_probability(depth, throughputs[i])));
   }
+}
+
+TEST_CASE("log_lanes is within 3e-7 of log, relative, from 1e-30 to 3e30", "[lanes][unit]") {
+  double worst = 0.0;
+  glint::Pcg32 rng(1, 2);
+  for (int round = 0; round < 1 << 14; ++round) {
+    FloatLanes x{};
+    for (int i = 0; i < kLaneCount; ++i)
+      x[i] = i == 0 ? 1.0f - rng.next_float() : std::ldexp(1.0f - rng.next_float(), i * 9 - 30);
+    const FloatLanes y = glint::log_lanes(x);
+    for (int i = 0; i < kLaneCount; ++i) {
+      const double exact = std::log(double(x[i]));
+      worst = std::max(worst, std::abs(double(y[i]) - exact) / std::max(1.0, std::abs(exact)));
+    }
+  }
+  CHECK(worst <= 3e-7);
+  const float edges[kLaneCount] = {1.0f,        0.5f,        2.0f,   0x1p-24f,
+                                   0.70710677f, 0.70710683f, 1e-30f, 3e30f};
+  const FloatLanes y = glint::log_lanes(lanes_of(edges));
+  for (int i = 0; i < kLaneCount; ++i) {
+    INFO("x = " << edges[i]);
+    CHECK(double(y[i]) == Approx(std::log(double(edges[i]))).epsilon(3e-7).margin(1e-7));
+  }
+  CHECK(y[0] == 0.0f);
+}
+
+TEMPLATE_TEST_CASE("lane-wise pixel filter offsets agree with the scalar policy", "[lanes][unit]",
+                   glint::NoAntialiasing, glint::GaussianAntialiasing, glint::BoxAntialiasing,
+                   glint::TentAntialiasing) {
+  glint::Pcg32 rng(9, 4);
+  for (int round = 0; round < 4096; ++round) {
+    Vec2 pairs[kLaneCount];
+    Vec2Lanes u = uniform_pairs(rng, pairs);
+    if (round == 0) {  // the ends of [0, 1)
+      for (int i = 0; i < kLaneCount; ++i) {
+        pairs[i] = {i < 4 ? 0.0f : 0x1.fffffep-1f, (i & 1) ? 0.5f : 0.0f};
+        u.x[i] = pairs[i].x;
+        u.y[i] = pairs[i].y;
+      }
+    }
+    const Vec2Lanes lanes = TestType::offset(u, 0.7f);
+    for (int i = 0; i < kLaneCount; ++i) {
+      const Vec2 scalar = TestType::offset(pairs[i], 0.7f);
+      INFO("u = " << pairs[i].x << ", " << pairs[i].y);
+      CHECK(lanes.x[i] == Approx(scalar.x).epsilon(1e-5).margin(1e-6));
+      CHECK(lanes.y[i] == Approx(scalar.y).epsilon(1e-5).margin(1e-6));
+    }
+  }
+}
+
+TEST_CASE("Camera::rays_through agrees with ray_through", "[lanes][unit]") {
+  glint::CameraDescription description;
+  description.position = {1.0f, 2.0f, 30.0f};
+  description.look_at = {0.0f, -1.0f, 0.0f};
+  description.up = {0.0f, 1.0f, 0.0f};
+  description.fov_degrees = 50.0f;
+  description.near = 0.25f;
+  const glint::Camera camera(description, 320, 200);
+  glint::Pcg32 rng(5, 5);
+  for (int round = 0; round < 1024; ++round) {
+    Vec2Lanes film{};
+    for (int i = 0; i < kLaneCount; ++i) {
+      film.x[i] = rng.next_float() * 320.0f;
+      film.y[i] = rng.next_float() * 200.0f;
+    }
+    Vec3Lanes direction;
+    FloatLanes t_min;
+    camera.rays_through(film, direction, t_min);
+    for (int i = 0; i < kLaneCount; ++i) {
+      const glint::Ray ray = camera.ray_through({film.x[i], film.y[i]});
+      check_close(direction.lane(i), ray.direction, 1e-6f);
+      CHECK(t_min[i] == Approx(ray.t_min).epsilon(1e-6));
+    }
+  }
+  CHECK(camera.position() == description.position);
 }
 
 #endif  // GLINT_AVX2

@@ -120,6 +120,31 @@ inline void sincos_lanes(FloatLanes x, FloatLanes& sine, FloatLanes& cosine) {
   cosine = std::bit_cast<FloatLanes>(std::bit_cast<IntLanes>(c) ^ cos_sign);
 }
 
+/// The natural logarithm of x for positive normal x: x = m 2^e with m in [sqrt(1/2), sqrt(2)),
+/// then Cephes logf's polynomial for log(m) and log(2) in two parts.
+inline FloatLanes log_lanes(FloatLanes x) {
+  const IntLanes bits = std::bit_cast<IntLanes>(x);
+  IntLanes exponent = ((bits >> 23) & 0xff) - 126;
+  FloatLanes m = std::bit_cast<FloatLanes>((bits & 0x007fffff) | 0x3f000000);  // [0.5, 1)
+  const IntLanes small = m < 0.707106781186547524f;
+  exponent += small;  // -1 where small
+  m = select(small, m + m, m) - 1.0f;
+  const FloatLanes e = __builtin_convertvector(exponent, FloatLanes);
+  const FloatLanes z = m * m;
+  FloatLanes y = 7.0376836292e-2f * m - 1.1514610310e-1f;
+  y = y * m + 1.1676998740e-1f;
+  y = y * m - 1.2420140846e-1f;
+  y = y * m + 1.4249322787e-1f;
+  y = y * m - 1.6668057665e-1f;
+  y = y * m + 2.0000714765e-1f;
+  y = y * m - 2.4999993993e-1f;
+  y = y * m + 3.3333331174e-1f;
+  y = y * m * z;
+  y += -2.12194440e-4f * e;
+  y += -0.5f * z;
+  return m + y + 0.693359375f * e;
+}
+
 struct Vec2Lanes {
   FloatLanes x, y;
 };
@@ -148,6 +173,7 @@ struct Vec3Lanes {
   friend Vec3Lanes operator*(const Vec3Lanes& a, const Vec3Lanes& b) {
     return {a.x * b.x, a.y * b.y, a.z * b.z};
   }
+  friend Vec3Lanes operator*(float s, const Vec3Lanes& a) { return {s * a.x, s * a.y, s * a.z}; }
   friend Vec3Lanes operator*(FloatLanes s, const Vec3Lanes& a) {
     return {s * a.x, s * a.y, s * a.z};
   }

@@ -138,5 +138,13 @@ inline Vec2 sample_standard_normal_pair(Vec2 u) {
   const float phi = 2.0f * kPi * u.y;
   return {radius * std::cos(phi), radius * std::sin(phi)};
 }
+#if defined(GLINT_AVX2)
+inline Vec2Lanes sample_standard_normal_pair_lanes(Vec2Lanes u) {
+  const FloatLanes radius = sqrt_lanes(-2.0f * log_lanes(1.0f - u.x));
+  FloatLanes sine, cosine;
+  sincos_lanes((2.0f * kPi) * u.y, sine, cosine);
+  return {radius * cosine, radius * sine};
+}
+#endif
 
 }  // namespace glint

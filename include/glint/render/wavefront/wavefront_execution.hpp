@@ -11,7 +11,7 @@
 // sampler in the same order, and batched queries that answer exactly what the single-ray ones
 // do. Shading runs eight paths at a time (shade_lanes: the hit, the material, the light rays,
 // roulette and the next direction in SIMD lanes, the sampler's draws lane by lane) wherever the
-// configuration's policies have lane-wise forms (LanewiseShading) and the build has AVX2;
+// configuration's policies have lane-wise forms (LanewisePolicies) and the build has AVX2;
 // otherwise path by path with ChainEstimator's own code (shade_path). The lane-wise arithmetic
 // is not the scalar code's to the last bit (a polynomial sin and cos, other multiply-adds), so
 // images differ from the scalar renderer's by rounding, and a path that grazes an edge may go
@@ -19,6 +19,7 @@
 // in the batch or on the thread, and a pixel's samples are added to its sum in index order:
 // the image is the same bit for bit whatever the thread count.
 
+#include <algorithm>
 #include <atomic>
 #include <bit>
 #include <cmath>
@@ -66,11 +67,13 @@ concept WavefrontConfig =
     RenderConfig<C> && std::same_as<typename C::material_model, StochasticMaterialModel>;
 
 #if defined(GLINT_AVX2)
-/// Whether every policy the shading stage calls has a lane-wise form (eight values at once):
-/// then WavefrontExecution shades eight paths at a time. A user's policy without one still
-/// renders, path by path. (The sampler and the sphere shading are called lane by lane.)
+/// Whether every policy the camera and shading stages call has a lane-wise form (eight values
+/// at once): then WavefrontExecution runs those stages eight paths at a time. A user's policy
+/// without one still renders, path by path. (The sampler and the sphere shading are called
+/// lane by lane.)
 template <typename C>
-concept LanewiseShading = requires(Vec2Lanes u, FloatLanes value, IntLanes depth) {
+concept LanewisePolicies = requires(Vec2Lanes u, FloatLanes value, IntLanes depth, float sigma) {
+  { C::antialiasing::offset(u, sigma) } -> std::same_as<Vec2Lanes>;
   { C::diffuse_sampling::sample(u) } -> std::same_as<DirectionSampleLanes>;
   { C::diffuse_sampling::pdf(value) } -> std::same_as<FloatLanes>;
   { C::fresnel::reflectance(value, value, value) } -> std::same_as<FloatLanes>;
@@ -93,10 +96,10 @@ class WavefrontExecution {
   using Origin = typename Context::Origin;
   static constexpr bool kSamplesEmitters = Context::kSamplesEmitters;
 #if defined(GLINT_AVX2)
-  /// Whether the shading stage runs eight paths at a time (see LanewiseShading).
-  static constexpr bool kShadesLanes = LanewiseShading<C>;
+  /// Whether the camera and shading stages run eight paths at a time (see LanewisePolicies).
+  static constexpr bool kUsesLanes = LanewisePolicies<C>;
 #else
-  static constexpr bool kShadesLanes = false;
+  static constexpr bool kUsesLanes = false;
 #endif
 
   /// Paths in flight per thread: enough that eight-ray batches stay full while paths end at
@@ -222,8 +225,10 @@ class WavefrontExecution {
     std::uint64_t summed = 0;
     int live = 0;
     for (;;) {
+      const int refill = live;
       while (live < kPaths && started < total && started - summed < std::uint64_t(kWindow))
-        start_path(state, live++, started++, piece);
+        state.sample[std::size_t(live++)] = started++;
+      start_paths(state, refill, live, piece);
       if (live == 0) break;
       trace_closest_hits(state, live, counters);
       shade(state, live, counters);
@@ -268,11 +273,29 @@ class WavefrontExecution {
     return count >= RayBatch::kWidth ? RayBatch::kAllLanes : (LaneMask(1) << count) - 1;
   }
 
-  /// Path p starts sample n: the camera ray through its point of the pixel, as
-  /// ScalarExecution::add_samples makes it.
-  GLINT_FLATTEN void start_path(ThreadState& state, int p, std::uint64_t n,
-                                const PieceLayout& piece) const {
+  /// Paths first .. last-1 start their samples (state.sample): the camera rays through their
+  /// points of the pixels, as ScalarExecution::add_samples makes them.
+  GLINT_STAGE void start_paths(ThreadState& state, int first, int last,
+                               const PieceLayout& piece) const {
+    if (first == last) return;
+#if defined(GLINT_AVX2)
+    if constexpr (kUsesLanes) {
+      const int width = RayBatch::kWidth;
+      for (int base = first - first % width; base < last; base += width) {
+        const LaneMask lanes = lanes_below(last - base) & ~lanes_below(std::max(0, first - base));
+        start_lanes(state, base, lanes, piece);
+      }
+      return;
+    }
+#endif
+    for (int p = first; p < last; ++p)
+      start_path(state, p, piece);
+  }
+
+  /// Path p starts sample state.sample[p].
+  GLINT_FLATTEN void start_path(ThreadState& state, int p, const PieceLayout& piece) const {
     const auto u = std::size_t(p);
+    const std::uint64_t n = state.sample[u];
     const int x = piece.x(n);
     const int y = piece.y(n);
     SamplerType& sampler = state.sampler[u];
@@ -286,8 +309,50 @@ class WavefrontExecution {
     state.radiance.set(p, Color(0.0f));
     state.depth[u] = 0;
     state.from[u] = Origin{};
-    state.sample[u] = n;
   }
+
+#if defined(GLINT_AVX2)
+  /// start_path for the lanes of `lanes` of paths base .. base+7: the sampler lane by lane,
+  /// the filter offset and the camera rays in SIMD lanes.
+  GLINT_FLATTEN void start_lanes(ThreadState& state, int base, LaneMask lanes,
+                                 const PieceLayout& piece) const {
+    Vec2Lanes film{}, u{};
+    for_each_lane(lanes, [&](int i) {
+      const auto p = std::size_t(base + i);
+      const std::uint64_t n = state.sample[p];
+      const int x = piece.x(n);
+      const int y = piece.y(n);
+      SamplerType& sampler = state.sampler[p];
+      sampler.start(PixelSample{std::uint32_t(x), std::uint32_t(y), piece.index(n),
+                                std::uint32_t(settings_.samples_per_pixel), settings_.seed});
+      film.x[i] = float(x) + 0.5f;
+      film.y[i] = float(y) + 0.5f;
+      if constexpr (C::antialiasing::enabled) {
+        const Vec2 draw = sampler.next_2d();
+        u.x[i] = draw.x;
+        u.y[i] = draw.y;
+      }
+      state.depth[p] = 0;
+      state.from[p] = Origin{};
+    });
+    if constexpr (C::antialiasing::enabled) {
+      const Vec2Lanes offset = C::antialiasing::offset(u, settings_.antialias_sigma);
+      film = {film.x + offset.x, film.y + offset.y};
+    }
+    RayLanes ray;
+    ray.origin = Vec3Lanes::broadcast(camera_.position());
+    camera_.rays_through(film, ray.direction, ray.t_min);
+    ray.t_max = broadcast(kInfinity);
+    ray.origin_sphere = broadcast(std::int32_t(kNoSphere));
+    ray.heads_into_origin_sphere = broadcast(0);
+    const IntLanes mask = lanes_of_bits(lanes);
+    set_rays(state.rays[std::size_t(base / RayBatch::kWidth)], mask, ray);
+    state.throughput.set_lanes(
+        base, select(mask, Vec3Lanes::broadcast(Color(1.0f)), state.throughput.lanes(base)));
+    state.radiance.set_lanes(
+        base, select(mask, Vec3Lanes::broadcast(Color(0.0f)), state.radiance.lanes(base)));
+  }
+#endif
 
   GLINT_STAGE void trace_closest_hits(ThreadState& state, int live, TraceCounters& counters) const {
     counters.rays += std::uint64_t(live);
@@ -298,7 +363,7 @@ class WavefrontExecution {
   }
 
   GLINT_STAGE void shade(ThreadState& state, int live, TraceCounters& counters) const {
-    if constexpr (kShadesLanes) {
+    if constexpr (kUsesLanes) {
       for (int base = 0; base < live; base += RayBatch::kWidth)
         shade_lanes(state, base, lanes_below(live - base), counters);
     } else {
@@ -610,13 +675,40 @@ class WavefrontExecution {
     state.throughput.set_lanes(
         base, select(continues, throughput * (tint * (factor * continuation)), throughput));
     store_lanes(&state.depth[std::size_t(base)], select(continues, depth + 1, depth));
-    const IntLanes heads_in = dot(next_direction, normal) < 0.0f;
-    RayBatch& next = state.rays[block];
-    for_each_lane(going_on, [&](int i) {
-      next.set(i, leaving_ray(point.lane(i), next_direction.lane(i), hit.sphere[i],
-                              heads_in[i] != 0, kInfinity));
-      state.ends[std::size_t(base + i)] = 0;
-    });
+    set_rays(state.rays[block], continues,
+             {point, next_direction, broadcast(0.0f), broadcast(kInfinity), sphere,
+              dot(next_direction, normal) < 0.0f});
+    for_each_lane(going_on, [&](int i) { state.ends[std::size_t(base + i)] = 0; });
+  }
+
+  /// Eight rays in SIMD lanes (Ray's fields).
+  struct RayLanes {
+    Vec3Lanes origin, direction;
+    FloatLanes t_min, t_max;
+    IntLanes origin_sphere;
+    IntLanes heads_into_origin_sphere;  ///< a mask
+  };
+
+  /// Sets the lanes of `mask` of `rays` to `to`, as RayBatch::set would lane by lane.
+  static void set_rays(RayBatch& rays, IntLanes mask, const RayLanes& to) {
+    const auto update = [&](float* column, FloatLanes value) {
+      store_lanes(column, select(mask, value, load_lanes(column)));
+    };
+    update(rays.origin_x, to.origin.x);
+    update(rays.origin_y, to.origin.y);
+    update(rays.origin_z, to.origin.z);
+    update(rays.direction_x, to.direction.x);
+    update(rays.direction_y, to.direction.y);
+    update(rays.direction_z, to.direction.z);
+    update(rays.t_min, to.t_min);
+    update(rays.t_max, to.t_max);
+    IntLanes sphere;
+    std::memcpy(&sphere, rays.origin_sphere, sizeof sphere);
+    sphere = select(mask, to.origin_sphere, sphere);
+    std::memcpy(rays.origin_sphere, &sphere, sizeof sphere);
+    const LaneMask bits = lane_bits(mask);
+    rays.heads_into_origin_sphere =
+        (rays.heads_into_origin_sphere & ~bits) | (lane_bits(to.heads_into_origin_sphere) & bits);
   }
 
   /// The emitter sample of PathContext::emitter_ray for the lanes of `lanes` (diffuse hits
@@ -772,25 +864,58 @@ class WavefrontExecution {
   /// and retires the paths that ended, their radiance kept for add_finished; the paths that
   /// go on are moved down to fill the holes. Returns the number left.
   GLINT_STAGE static int gather_and_retire(ThreadState& state, int live) {
+#if defined(GLINT_AVX2)
+    for (int base = 0; base < live; base += RayBatch::kWidth)
+      gather_lanes(state, base);
+#else
+    for (int p = 0; p < live; ++p)
+      gather_path(state, p);
+#endif
     for (int p = live - 1; p >= 0; --p) {
       const auto u = std::size_t(p);
-      const std::uint8_t pending = state.pending[u];
-      Color radiance = state.radiance.get(p);
-      if (pending & kDirectLight)
-        radiance += (state.shading_throughput.get(p) * state.albedo.get(p)) *
-                    (kInvPi * state.irradiance.get(p));
-      if (pending & kEmitterRay)
-        radiance += state.shading_throughput.get(p) *
-                    ((pending & kEmitterVisible) ? state.emitter_light.get(p) : Color(0.0f));
-      state.radiance.set(p, radiance);
       if (!state.ends[u]) continue;
       const auto slot = std::size_t(state.sample[u] % std::uint64_t(kWindow));
-      state.results[slot] = radiance;
+      state.results[slot] = state.radiance.get(p);
       state.result_ready[slot] = 1;
       if (p != --live) move_path(state, live, p);
     }
     return live;
   }
+
+  static void gather_path(ThreadState& state, int p) {
+    const std::uint8_t pending = state.pending[std::size_t(p)];
+    Color radiance = state.radiance.get(p);
+    if (pending & kDirectLight)
+      radiance += (state.shading_throughput.get(p) * state.albedo.get(p)) *
+                  (kInvPi * state.irradiance.get(p));
+    if (pending & kEmitterRay)
+      radiance += state.shading_throughput.get(p) *
+                  ((pending & kEmitterVisible) ? state.emitter_light.get(p) : Color(0.0f));
+    state.radiance.set(p, radiance);
+  }
+
+#if defined(GLINT_AVX2)
+  /// gather_path for paths base .. base+7 (those beyond the live ones are left as they are:
+  /// their pending flags are clear).
+  static void gather_lanes(ThreadState& state, int base) {
+    IntLanes pending{};
+    for (int i = 0; i < kLaneCount; ++i)
+      pending[i] = state.pending[std::size_t(base + i)];
+    if (lane_bits(pending != 0) == 0) return;
+    const Vec3Lanes zero = Vec3Lanes::broadcast(Color(0.0f));
+    const Vec3Lanes throughput = state.shading_throughput.lanes(base);
+    Vec3Lanes radiance = state.radiance.lanes(base);
+    radiance = select((pending & kDirectLight) != 0,
+                      radiance + (throughput * state.albedo.lanes(base)) *
+                                     (kInvPi * state.irradiance.lanes(base)),
+                      radiance);
+    radiance = select((pending & kEmitterRay) != 0,
+                      radiance + throughput * select((pending & kEmitterVisible) != 0,
+                                                     state.emitter_light.lanes(base), zero),
+                      radiance);
+    state.radiance.set_lanes(base, radiance);
+  }
+#endif
 
   /// Moves path `from` (still going on) to place `to`, whose path has ended.
   static void move_path(ThreadState& state, int from, int to) {
