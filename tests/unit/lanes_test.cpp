@@ -21,6 +21,7 @@
 #include "glint/policy/fresnel.hpp"
 #include "glint/policy/light_sampling.hpp"
 #include "glint/policy/path_termination.hpp"
+#include "glint/policy/sampler.hpp"
 #include "glint/render/camera.hpp"
 
 // The lane-wise code exists only where the compiler targets AVX2 (see math/lanes.hpp).
@@ -290,6 +291,47 @@ TEST_CASE("Camera::rays_through agrees with ray_through", "[lanes][unit]") {
     }
   }
   CHECK(camera.position() == description.position);
+}
+
+TEMPLATE_TEST_CASE("a sampler's Lanes form draws bit for bit what the sampler draws, lane by lane",
+                   "[lanes][unit]", glint::IndependentSampler, glint::SobolSampler,
+                   glint::HybridSobolSampler<>, glint::HybridSobolSampler<6>) {
+  // Eight samplers at different pixels and sample indices; each round draws a 1D or a 2D value
+  // for a random subset of lanes, as the wavefront's stages do; the lanes left out must keep
+  // their state, so that their next draws still match.
+  glint::Pcg32 rng(2024, 12);
+  for (int trial = 0; trial < 64; ++trial) {
+    TestType scalar[kLaneCount];
+    typename TestType::Lanes lanes;
+    for (int i = 0; i < kLaneCount; ++i) {
+      scalar[i].start(glint::PixelSample{rng.next_u32() % 4096, rng.next_u32() % 4096,
+                                         rng.next_u32() % 1024, 1024, rng.next_u32()});
+      lanes.set_lane(i, scalar[i]);
+    }
+    for (int round = 0; round < 40; ++round) {
+      const std::uint32_t bits = rng.next_u32() & 0xffu;
+      const IntLanes mask = glint::lanes_of_bits(bits);
+      const bool two = (rng.next_u32() & 1u) != 0;
+      const Vec2Lanes drawn = two ? lanes.next_2d(mask) : Vec2Lanes{lanes.next_1d(mask), {}};
+      for (int i = 0; i < kLaneCount; ++i) {
+        if (!((bits >> i) & 1u)) continue;
+        INFO("trial " << trial << ", round " << round << ", lane " << i);
+        if (two) {
+          const Vec2 u = scalar[i].next_2d();
+          CHECK(same_bits(drawn.x[i], u.x));
+          CHECK(same_bits(drawn.y[i], u.y));
+        } else {
+          CHECK(same_bits(drawn.x[i], scalar[i].next_1d()));
+        }
+      }
+    }
+    // Stored back, each lane continues as its sampler does.
+    for (int i = 0; i < kLaneCount; ++i) {
+      TestType stored;
+      lanes.get_lane(i, stored);
+      CHECK(same_bits(stored.next_1d(), scalar[i].next_1d()));
+    }
+  }
 }
 
 #endif  // GLINT_AVX2

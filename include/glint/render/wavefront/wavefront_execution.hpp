@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <cstring>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "glint/config.hpp"
@@ -79,6 +80,17 @@ concept LanewisePolicies = requires(Vec2Lanes u, FloatLanes value, IntLanes dept
   { C::fresnel::reflectance(value, value, value) } -> std::same_as<FloatLanes>;
   { C::light_sampling::light_weight(value, value) } -> std::same_as<FloatLanes>;
   { C::path_termination::continue_probability(depth, value) } -> std::same_as<FloatLanes>;
+};
+
+/// A sampler with a form that draws for eight paths at once, in SIMD lanes: S::Lanes, which
+/// loads and stores lane i from and to a sampler and draws for the lanes of a mask (the others
+/// keep their state). Without one, WavefrontExecution draws path by path.
+template <typename S>
+concept LanewiseSampler = requires(typename S::Lanes lanes, const S& from, S& to, IntLanes mask) {
+  lanes.set_lane(0, from);
+  lanes.get_lane(0, to);
+  { lanes.next_1d(mask) } -> std::same_as<FloatLanes>;
+  { lanes.next_2d(mask) } -> std::same_as<Vec2Lanes>;
 };
 #endif
 
@@ -316,7 +328,7 @@ class WavefrontExecution {
   /// the filter offset and the camera rays in SIMD lanes.
   GLINT_FLATTEN void start_lanes(ThreadState& state, int base, LaneMask lanes,
                                  const PieceLayout& piece) const {
-    Vec2Lanes film{}, u{};
+    Vec2Lanes film{};
     for_each_lane(lanes, [&](int i) {
       const auto p = std::size_t(base + i);
       const std::uint64_t n = state.sample[p];
@@ -327,15 +339,11 @@ class WavefrontExecution {
                                 std::uint32_t(settings_.samples_per_pixel), settings_.seed});
       film.x[i] = float(x) + 0.5f;
       film.y[i] = float(y) + 0.5f;
-      if constexpr (C::antialiasing::enabled) {
-        const Vec2 draw = sampler.next_2d();
-        u.x[i] = draw.x;
-        u.y[i] = draw.y;
-      }
       state.depth[p] = 0;
       state.from[p] = Origin{};
     });
     if constexpr (C::antialiasing::enabled) {
+      const Vec2Lanes u = SamplerBlock(state.sampler, base, lanes).next_2d(lanes);
       const Vec2Lanes offset = C::antialiasing::offset(u, settings_.antialias_sigma);
       film = {film.x + offset.x, film.y + offset.y};
     }
@@ -433,6 +441,58 @@ class WavefrontExecution {
   }
 
 #if defined(GLINT_AVX2)
+  /// The samplers of paths base .. base+7 as one: in SIMD lanes when the sampler has a Lanes
+  /// form (loaded here, stored back when the block goes), one by one otherwise. Each draw is
+  /// for the lanes of a mask; the values of the other lanes are unspecified.
+  class SamplerBlock {
+   public:
+    SamplerBlock(std::vector<SamplerType>& samplers, int base, LaneMask lanes)
+        : samplers_(samplers), base_(std::size_t(base)), lanes_(lanes) {
+      if constexpr (kLanes)
+        for_each_lane(lanes_,
+                      [&](int i) { lanes_state_.set_lane(i, samplers_[base_ + std::size_t(i)]); });
+    }
+    ~SamplerBlock() {
+      if constexpr (kLanes)
+        for_each_lane(lanes_,
+                      [&](int i) { lanes_state_.get_lane(i, samplers_[base_ + std::size_t(i)]); });
+    }
+    SamplerBlock(const SamplerBlock&) = delete;
+    SamplerBlock& operator=(const SamplerBlock&) = delete;
+
+    FloatLanes next_1d(LaneMask mask) {
+      if constexpr (kLanes) {
+        return lanes_state_.next_1d(lanes_of_bits(mask));
+      } else {
+        FloatLanes value = broadcast(0.0f);
+        for_each_lane(mask, [&](int i) { value[i] = samplers_[base_ + std::size_t(i)].next_1d(); });
+        return value;
+      }
+    }
+    Vec2Lanes next_2d(LaneMask mask) {
+      if constexpr (kLanes) {
+        return lanes_state_.next_2d(lanes_of_bits(mask));
+      } else {
+        Vec2Lanes value{broadcast(0.0f), broadcast(0.0f)};
+        for_each_lane(mask, [&](int i) {
+          const Vec2 u = samplers_[base_ + std::size_t(i)].next_2d();
+          value.x[i] = u.x;
+          value.y[i] = u.y;
+        });
+        return value;
+      }
+    }
+
+   private:
+    static constexpr bool kLanes = LanewiseSampler<SamplerType>;
+    struct NoLanes {};
+    std::vector<SamplerType>& samplers_;
+    std::size_t base_;
+    LaneMask lanes_;
+    [[no_unique_address]] std::conditional_t<kLanes, typename SamplerType::Lanes, NoLanes>
+        lanes_state_{};
+  };
+
   /// What shade_lanes reads of the spheres that eight paths hit, gathered lane by lane.
   struct SurfaceLanes {
     Vec3Lanes center;
@@ -560,6 +620,7 @@ class WavefrontExecution {
     const FloatLanes total = surface.diffuse + surface.mirror + surface.transparent;
     const IntLanes depth = load_lanes(&state.depth[std::size_t(base)]);
     const LaneMask diffuse_lanes = lane_bits(has_diffuse);
+    SamplerBlock draws(state.sampler, base, hits);
 
     // Light: the point lights' shadow rays and the emitter sample, at diffuse hits.
     if (diffuse_lanes != 0) {
@@ -589,25 +650,21 @@ class WavefrontExecution {
       if constexpr (kSamplesEmitters)
         sample_emitters_lanes(state, base, diffuse_lanes & lane_bits(depth < context_.max_depth()),
                               hit, point, normal, facing, from_inside, albedo,
-                              surface.diffuse / total, counters);
+                              surface.diffuse / total, draws, counters);
     }
 
-    // Roulette and the lobe, drawn lane by lane in ChainEstimator's order.
+    // Roulette and the lobe, in ChainEstimator's order.
     LaneMask going_on = hits & lane_bits((depth < context_.max_depth()) & (total > 0.0f));
     FloatLanes continuation = broadcast(1.0f);
     if constexpr (C::path_termination::uses_roulette) {
       const FloatLanes p =
           C::path_termination::continue_probability(depth, max_component(throughput));
-      for_each_lane(going_on & lane_bits(p < 1.0f), [&](int i) {
-        if (state.sampler[std::size_t(base + i)].next_1d() >= p[i]) going_on &= ~(LaneMask(1) << i);
-      });
+      const LaneMask played = going_on & lane_bits(p < 1.0f);
+      if (played != 0) going_on &= ~(played & lane_bits(draws.next_1d(played) >= p));
       continuation = select(p < 1.0f, 1.0f / p, continuation);
     }
     if (going_on == 0) return;
-    FloatLanes u_lobe = broadcast(0.0f);
-    for_each_lane(going_on,
-                  [&](int i) { u_lobe[i] = state.sampler[std::size_t(base + i)].next_1d(); });
-    u_lobe *= total;
+    const FloatLanes u_lobe = draws.next_1d(going_on) * total;
     const IntLanes choose_diffuse = u_lobe < surface.diffuse;
     const IntLanes choose_mirror = ~choose_diffuse & (u_lobe < surface.diffuse + surface.mirror);
     const IntLanes choose_transmission = ~(choose_diffuse | choose_mirror);
@@ -625,30 +682,15 @@ class WavefrontExecution {
         normalize(eta * direction + (eta * cos_incident - cos_transmitted) * facing);
     IntLanes reflect = total_internal;
     const LaneMask diffuse_draws = going_on & lane_bits(choose_diffuse);
-    Vec2Lanes u_diffuse = {broadcast(0.0f), broadcast(0.0f)};
+    // One draw per path: the diffuse direction's or Fresnel's (never both).
+    const Vec2Lanes u_diffuse = draws.next_2d(diffuse_draws);
     if constexpr (C::fresnel::enabled) {
       const IntLanes by_fresnel = choose_transmission & ~total_internal & surface.fully_transparent;
       const FloatLanes reflectance =
           C::fresnel::reflectance(cos_incident, eta_incident, eta_transmitted);
-      FloatLanes u_fresnel = broadcast(1.0f);
-      // One draw per path: the diffuse direction's or Fresnel's (never both).
-      for_each_lane(going_on & (diffuse_draws | lane_bits(by_fresnel)), [&](int i) {
-        SamplerType& sampler = state.sampler[std::size_t(base + i)];
-        if ((diffuse_draws >> i) & 1u) {
-          const Vec2 u = sampler.next_2d();
-          u_diffuse.x[i] = u.x;
-          u_diffuse.y[i] = u.y;
-        } else {
-          u_fresnel[i] = sampler.next_1d();
-        }
-      });
-      reflect |= by_fresnel & (u_fresnel < reflectance);
-    } else {
-      for_each_lane(diffuse_draws, [&](int i) {
-        const Vec2 u = state.sampler[std::size_t(base + i)].next_2d();
-        u_diffuse.x[i] = u.x;
-        u_diffuse.y[i] = u.y;
-      });
+      const LaneMask fresnel_draws = going_on & lane_bits(by_fresnel);
+      if (fresnel_draws != 0)
+        reflect |= lanes_of_bits(fresnel_draws) & (draws.next_1d(fresnel_draws) < reflectance);
     }
 
     // Diffuse: a direction from C::diffuse_sampling in the frame of the facing normal.
@@ -716,7 +758,8 @@ class WavefrontExecution {
   void sample_emitters_lanes(ThreadState& state, int base, LaneMask lanes, const HitBatch& hit,
                              const Vec3Lanes& point, const Vec3Lanes& normal,
                              const Vec3Lanes& facing, IntLanes from_inside, const Vec3Lanes& albedo,
-                             FloatLanes diffuse_probability, TraceCounters& counters) const {
+                             FloatLanes diffuse_probability, SamplerBlock& draws,
+                             TraceCounters& counters) const {
     if (lanes == 0) return;
     for_each_lane(lanes, [&](int i) { state.pending[std::size_t(base + i)] |= kEmitterRay; });
     state.emitter_light.set_lanes(base, Vec3Lanes::broadcast(Color(0.0f)));
@@ -724,21 +767,17 @@ class WavefrontExecution {
     if (emitters.empty()) return;
     Vec3Lanes center{}, radiance{};
     FloatLanes radius{}, probability{};
-    Vec2Lanes u{};
+    const FloatLanes u_choice = draws.next_1d(lanes);
+    const Vec2Lanes u = draws.next_2d(lanes);
     LaneMask on_emitter = 0;
     std::uint32_t emitter_sphere[kLaneCount] = {};
     for_each_lane(lanes, [&](int i) {
-      SamplerType& sampler = state.sampler[std::size_t(base + i)];
-      const float u_choice = sampler.next_1d();
-      const Vec2 u_direction = sampler.next_2d();
-      const EmitterTable::Choice choice = emitters.choose(u_choice);
+      const EmitterTable::Choice choice = emitters.choose(u_choice[i]);
       const SphereEmitter& emitter = emitters[choice.index];
       center.set_lane(i, emitter.center);
       radiance.set_lane(i, emitter.radiance);
       radius[i] = emitter.radius;
       probability[i] = choice.probability;
-      u.x[i] = u_direction.x;
-      u.y[i] = u_direction.y;
       emitter_sphere[i] = emitter.sphere;
       if (emitter.sphere == hit.sphere[i]) on_emitter |= LaneMask(1) << i;
     });
