@@ -261,8 +261,9 @@ struct Vec3Lanes {
 inline FloatLanes dot(const Vec3Lanes& a, const Vec3Lanes& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
+/// As glm::normalize: times the reciprocal of the length (one division, not three).
 inline Vec3Lanes normalize(const Vec3Lanes& v) {
-  return v / sqrt_lanes(dot(v, v));
+  return (1.0f / sqrt_lanes(dot(v, v))) * v;
 }
 inline Vec3Lanes select(IntLanes mask, const Vec3Lanes& if_true, const Vec3Lanes& if_false) {
   return {select(mask, if_true.x, if_false.x), select(mask, if_true.y, if_false.y),
