@@ -45,10 +45,11 @@ $2 $3
   ((size == ${#header} + $2 * $3 * 12)) || fail "$1 has $size bytes, not a complete $2x$3 PFM"
 }
 
-# A render of 160x120 pixels at 1024 samples per pixel: passes of 1, 1, 2, 4, ... 32, then 32
+# A render of 320x240 pixels at 1024 samples per pixel: passes of 1, 1, 2, 4, ... 32, then 32
 # samples at a time, so the first 10% of the work holds several completed passes and the
-# render still has about 90% of its work ahead when it is interrupted there.
-long_render=(--width 160 --height 120 --spp 1024 --max-depth 3 --threads 2 -o out.png
+# render still has about 90% of its work ahead when it is interrupted there (some seconds on 2
+# threads of a Zen 5: a quarter of the pixels could end before the signal arrives).
+long_render=(--width 320 --height 240 --spp 1024 --max-depth 3 --threads 2 -o out.png
              --hdr out.pfm)
 
 # Starts a long render in the background (stderr is a file, so progress comes as a line per
@@ -83,10 +84,10 @@ interrupted_once() { # SIGNAL STATUS
   # count is the end of a pass: 1, 2, 4, ... 32, then multiples of 32.
   ((spp >= 96 && spp < 1024 && spp % 32 == 0 && passes == spp / 32 + 5)) ||
     fail "$spp samples per pixel in $passes passes is not a pass boundary past 10%"
-  grep -q "^glint-render (.*): .* -> out\.png: 160x120, $spp spp," err.log ||
+  grep -q "^glint-render (.*): .* -> out\.png: 320x240, $spp spp," err.log ||
     fail "the summary line does not give $spp spp"
   complete_png out.png
-  complete_pfm out.pfm 160 120
+  complete_pfm out.pfm 320 240
   no_temporaries
 }
 
@@ -130,7 +131,7 @@ case_sigint_quiet() {
     fail "no stop message"
   [[ $(wc -l <err.log) -eq 1 ]] || fail "--quiet printed more than the stop message"
   complete_png out.png
-  complete_pfm out.pfm 160 120
+  complete_pfm out.pfm 320 240
   no_temporaries
 }
 
@@ -316,10 +317,10 @@ case_time_limit_zero() {
   ((status == 0)) || fail "exit status $status, expected 0"
   [[ $(tail -n 1 err.log) == "glint-render: time limit of 0 s reached: out.png holds 1 of 1024 samples per pixel (1 of 37 passes)" ]] ||
     fail "last line on stderr is not the time limit message"
-  grep -q "^glint-render (.*): .* -> out\.png: 160x120, 1 spp," err.log ||
+  grep -q "^glint-render (.*): .* -> out\.png: 320x240, 1 spp," err.log ||
     fail "the summary line does not give 1 spp"
   complete_png out.png
-  complete_pfm out.pfm 160 120
+  complete_pfm out.pfm 320 240
   no_temporaries
 }
 

@@ -103,8 +103,10 @@ case_bad_option() {
   (($(grep -c "^usage: mpirun -n N glint-render-mpi SCENE" err.log) == 1)) || fail "not one usage"
 }
 
-# A render long enough to be stopped or killed while it runs: 37 passes of tiny.scene.
-long_render=("$source_dir/tests/cli/scenes/tiny.scene" --width 160 --height 120 --spp 1024
+# A render long enough to be stopped or killed while it runs: 37 passes of tiny.scene (about
+# 4 s on 2 ranks of a Zen 5 with the wavefront renderer; at a quarter of the pixels it could end
+# before the signal arrived).
+long_render=("$source_dir/tests/cli/scenes/tiny.scene" --width 320 --height 240 --spp 1024
              --max-depth 3 --threads 1 -o out.png --hdr out.pfm)
 
 # Starts RANKS ranks of the long render in the background (stderr to err.log, so progress comes

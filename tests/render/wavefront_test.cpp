@@ -34,6 +34,26 @@ auto chain_variants(std::tuple<V...>*) -> decltype(std::tuple_cat(
 using ChainVariants = decltype(chain_variants(static_cast<glint::variants::all*>(nullptr)));
 static_assert(std::tuple_size_v<ChainVariants> >= 3);
 
+/// ExactFresnel without its lane-wise form, as a user's policy may be: the wavefront renderer
+/// then shades path by path (ChainEstimator's own code) instead of eight paths at a time.
+struct ScalarOnlyFresnel {
+  static constexpr bool enabled = true;
+  static float reflectance(float cos_incident, float eta_incident, float eta_transmitted) {
+    return glint::ExactFresnel::reflectance(cos_incident, eta_incident, eta_transmitted);
+  }
+};
+struct fast_path_by_path : glint::variants::fast::with_fresnel<ScalarOnlyFresnel> {
+  static constexpr glint::VariantInfo info{"fast_path_by_path", "`fast`, shaded path by path",
+                                           true};
+};
+static_assert(!glint::WavefrontExecution<fast_path_by_path>::kUsesLanes);
+#if defined(GLINT_AVX2)
+static_assert(glint::WavefrontExecution<glint::variants::fast>::kUsesLanes);
+#endif
+
+/// The chain variants, and `fast` shaded path by path: both ways of shading.
+using WavefrontConfigs = decltype(std::tuple_cat(ChainVariants{}, std::tuple<fast_path_by_path>{}));
+
 /// The bench scenes and the report's scenes, sorted by name.
 std::vector<fs::path> comparison_scenes() {
   std::vector<fs::path> files;
@@ -79,7 +99,7 @@ glint::Scene mixed_scene() {
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("wavefront and scalar renderers estimate the same image",
-                        "[render][statistical][wavefront]", ChainVariants) {
+                        "[render][statistical][wavefront]", WavefrontConfigs) {
   // Seeds 100.. for the scalar renderer and 200.. for the wavefront one: independent estimates.
   std::vector<fs::path> files = comparison_scenes();
   REQUIRE(files.size() >= 20);
@@ -104,7 +124,7 @@ TEMPLATE_LIST_TEST_CASE("wavefront and scalar renderers estimate the same image"
 }
 
 TEMPLATE_LIST_TEST_CASE("with the same seed, the wavefront follows the scalar renderer's paths",
-                        "[render][wavefront]", ChainVariants) {
+                        "[render][wavefront]", WavefrontConfigs) {
   // The same draws and the same hits: a pixel can differ only by the rounding of the order in
   // which light is added, which could tip a roulette or lobe choice in a rare path. So nearly
   // every pixel agrees to a part in 10^4, and the rays traced agree in number to a part in 10^3.

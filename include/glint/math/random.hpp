@@ -4,6 +4,8 @@
 
 #include <cstdint>
 
+#include "glint/math/lanes.hpp"
+
 namespace glint {
 
 /// 2^64 divided by the golden ratio: an odd constant whose multiples are spread evenly
@@ -19,6 +21,15 @@ constexpr std::uint64_t mix_bits(std::uint64_t v) {
   v ^= v >> 33;
   return v;
 }
+#if defined(GLINT_AVX2)
+inline Uint64Lanes mix_bits(Uint64Lanes v) {
+  v = v ^ (v >> 33);
+  v = v * Uint64Lanes::broadcast(0xff51afd7ed558ccdULL);
+  v = v ^ (v >> 33);
+  v = v * Uint64Lanes::broadcast(0xc4ceb9fe1a85ec53ULL);
+  return v ^ (v >> 33);
+}
+#endif
 
 /// Hashes any number of integers into one well-mixed 64-bit value.
 template <typename... Ts>
@@ -59,6 +70,32 @@ class Pcg32 {
 
   /// Uniform in [0, 1).
   constexpr float next_float() { return bits_to_unit_float(next_u32()); }
+
+#if defined(GLINT_AVX2)
+  /// Eight generators, one per lane; a lane outside a draw's mask keeps its state.
+  class Lanes {
+   public:
+    void set_lane(int i, const Pcg32& rng) {
+      state_.set_lane(i, rng.state_);
+      increment_.set_lane(i, rng.increment_);
+    }
+    void get_lane(int i, Pcg32& rng) const {
+      rng.state_ = state_.lane(i);
+      rng.increment_ = increment_.lane(i);
+    }
+    UintLanes next_u32(IntLanes mask) {
+      const Uint64Lanes old = state_;
+      state_ = select(mask, old * Uint64Lanes::broadcast(6364136223846793005ULL) + increment_, old);
+      const UintLanes xorshifted = (((old >> 18) ^ old) >> 27).low_bits();
+      const UintLanes rot = (old >> 59).low_bits();
+      return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+    }
+    FloatLanes next_float(IntLanes mask) { return unit_floats(next_u32(mask)); }
+
+   private:
+    Uint64Lanes state_{}, increment_{};
+  };
+#endif
 
  private:
   std::uint64_t state_ = 0x853c49e6748fea9bULL;

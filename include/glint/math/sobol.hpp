@@ -5,6 +5,8 @@
 
 #include <cstdint>
 
+#include "glint/math/lanes.hpp"
+
 namespace glint {
 
 namespace detail {
@@ -19,6 +21,15 @@ constexpr std::uint32_t reverse_bits(std::uint32_t v) {
   v = ((v & 0x55555555u) << 1) | ((v >> 1) & 0x55555555u);
   return v;
 }
+#if defined(GLINT_AVX2)
+inline UintLanes reverse_bits(UintLanes v) {
+  v = (v << 16) | (v >> 16);
+  v = ((v & 0x00ff00ffu) << 8) | ((v >> 8) & 0x00ff00ffu);
+  v = ((v & 0x0f0f0f0fu) << 4) | ((v >> 4) & 0x0f0f0f0fu);
+  v = ((v & 0x33333333u) << 2) | ((v >> 2) & 0x33333333u);
+  return ((v & 0x55555555u) << 1) | ((v >> 1) & 0x55555555u);
+}
+#endif
 
 }  // namespace detail
 
@@ -51,6 +62,16 @@ constexpr std::uint32_t sobol_second_dimension_reversed(std::uint32_t index) {
   v ^= (v >> 16) & 0x0000ffffu;
   return v;
 }
+#if defined(GLINT_AVX2)
+inline UintLanes sobol_second_dimension_reversed(UintLanes v) {
+  v ^= (v >> 1) & 0x55555555u;
+  v ^= (v >> 2) & 0x33333333u;
+  v ^= (v >> 4) & 0x0f0f0f0fu;
+  v ^= (v >> 8) & 0x00ff00ffu;
+  v ^= (v >> 16) & 0x0000ffffu;
+  return v;
+}
+#endif
 
 constexpr std::uint32_t sobol_second_dimension(std::uint32_t index) {
   return detail::reverse_bits(sobol_second_dimension_reversed(index));
@@ -72,6 +93,20 @@ constexpr std::uint32_t owen_scramble_reversed(std::uint32_t v, std::uint64_t ke
   v ^= v * ((a >> 7) << 1);
   return v;
 }
+#if defined(GLINT_AVX2)
+inline UintLanes owen_scramble_reversed(UintLanes v, const Uint64Lanes& key) {
+  const UintLanes a = key.low_bits();
+  const UintLanes b = key.high_bits();
+  v += a;
+  v ^= v * 0x9e3779b8u;
+  v *= b | 1u;
+  v ^= v * 0x7feb352cu;
+  v += b;
+  v ^= v * 0x846ca68au;
+  v ^= v * ((a >> 7) << 1);
+  return v;
+}
+#endif
 
 /// An Owen scramble of a binary fraction in ordinary order (bit 31 the first digit).
 constexpr std::uint32_t owen_scramble(std::uint32_t fraction, std::uint64_t key) {

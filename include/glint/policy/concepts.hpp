@@ -6,6 +6,7 @@
 #include <concepts>
 #include <cstdint>
 
+#include "glint/math/lanes.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/scene/material.hpp"
 
@@ -35,6 +36,14 @@ struct DirectionSample {
   Vec3 local_direction;
   float weight;
 };
+
+/// Eight DirectionSamples, for the wavefront renderer's lane-wise shading.
+#if defined(GLINT_AVX2)
+struct DirectionSampleLanes {
+  Vec3Lanes local_direction;
+  FloatLanes weight;
+};
+#endif
 
 /// How the diffuse bounce direction is drawn.
 template <typename D>

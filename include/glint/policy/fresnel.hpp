@@ -14,6 +14,11 @@ namespace glint {
 struct NoFresnel {
   static constexpr bool enabled = false;
   static float reflectance(float, float, float) { return 0.0f; }
+#if defined(GLINT_AVX2)
+  static FloatLanes reflectance(FloatLanes, FloatLanes, FloatLanes) {
+    return broadcast(0.0f);
+  }
+#endif
 };
 
 /// Unpolarised reflectance from the full Fresnel equations for a dielectric.
@@ -32,6 +37,25 @@ struct ExactFresnel {
                            (eta_transmitted * cos_incident + eta_incident * cos_transmitted);
     return 0.5f * (perpendicular * perpendicular + parallel * parallel);
   }
+#if defined(GLINT_AVX2)
+  static FloatLanes reflectance(FloatLanes cos_incident, FloatLanes eta_incident,
+                                FloatLanes eta_transmitted) {
+    cos_incident = min_lanes(max_lanes(cos_incident, broadcast(0.0f)), broadcast(1.0f));
+    const FloatLanes sin2_incident = max_lanes(broadcast(0.0f), 1.0f - cos_incident * cos_incident);
+    const FloatLanes eta = eta_incident / eta_transmitted;
+    const FloatLanes sin2_transmitted = eta * eta * sin2_incident;
+    const IntLanes total_internal = sin2_transmitted >= 1.0f;
+    const FloatLanes cos_transmitted =
+        sqrt_lanes(max_lanes(broadcast(0.0f), 1.0f - sin2_transmitted));
+    const FloatLanes perpendicular =
+        (eta_incident * cos_incident - eta_transmitted * cos_transmitted) /
+        (eta_incident * cos_incident + eta_transmitted * cos_transmitted);
+    const FloatLanes parallel = (eta_transmitted * cos_incident - eta_incident * cos_transmitted) /
+                                (eta_transmitted * cos_incident + eta_incident * cos_transmitted);
+    return select(total_internal, broadcast(1.0f),
+                  0.5f * (perpendicular * perpendicular + parallel * parallel));
+  }
+#endif
 };
 
 /// Schlick's approximation. The cosine must be taken on the lower-index side, otherwise the
@@ -53,6 +77,23 @@ struct SchlickFresnel {
     const float m2 = m * m;
     return r0 + (1.0f - r0) * m2 * m2 * m;
   }
+#if defined(GLINT_AVX2)
+  static FloatLanes reflectance(FloatLanes cos_incident, FloatLanes eta_incident,
+                                FloatLanes eta_transmitted) {
+    cos_incident = min_lanes(max_lanes(cos_incident, broadcast(0.0f)), broadcast(1.0f));
+    FloatLanes r0 = (eta_incident - eta_transmitted) / (eta_incident + eta_transmitted);
+    r0 *= r0;
+    const IntLanes denser_side = eta_incident > eta_transmitted;
+    const FloatLanes eta = eta_incident / eta_transmitted;
+    const FloatLanes sin2_transmitted = eta * eta * (1.0f - cos_incident * cos_incident);
+    const IntLanes total_internal = denser_side & (sin2_transmitted >= 1.0f);
+    const FloatLanes cosine = select(
+        denser_side, sqrt_lanes(max_lanes(broadcast(0.0f), 1.0f - sin2_transmitted)), cos_incident);
+    const FloatLanes m = 1.0f - cosine;
+    const FloatLanes m2 = m * m;
+    return select(total_internal, broadcast(1.0f), r0 + (1.0f - r0) * m2 * m2 * m);
+  }
+#endif
 };
 
 static_assert(Fresnel<NoFresnel> && Fresnel<ExactFresnel> && Fresnel<SchlickFresnel>);

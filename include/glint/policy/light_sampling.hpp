@@ -10,6 +10,7 @@
 // For every direction the two weights sum to one, which keeps the estimate unbiased.
 
 #include <cmath>
+#include <limits>
 
 #include "glint/policy/concepts.hpp"
 
@@ -20,6 +21,11 @@ struct PointLightsOnly {
   static constexpr bool samples_emitters = false;
   static float light_weight(float, float) { return 0.0f; }
   static float bounce_weight(float, float) { return 1.0f; }
+#if defined(GLINT_AVX2)
+  static FloatLanes light_weight(FloatLanes, FloatLanes) {
+    return broadcast(0.0f);
+  }
+#endif
 };
 
 /// Both heuristics are written in the ratio of the densities, 1 / (1 + (other/pdf)^k): the
@@ -34,6 +40,14 @@ struct BalanceHeuristic {
     if (std::isinf(pdf)) return 1.0f;
     return 1.0f / (1.0f + other_pdf / pdf);
   }
+#if defined(GLINT_AVX2)
+  static FloatLanes weight(FloatLanes pdf, FloatLanes other_pdf) {
+    const FloatLanes w = 1.0f / (1.0f + other_pdf / pdf);
+    return select(pdf > 0.0f,
+                  select(pdf == std::numeric_limits<float>::infinity(), broadcast(1.0f), w),
+                  broadcast(0.0f));
+  }
+#endif
 };
 
 /// The power heuristic with exponent 2: closer to choosing the better strategy outright, which
@@ -46,6 +60,15 @@ struct PowerHeuristic {
     const float ratio = other_pdf / pdf;
     return 1.0f / (1.0f + ratio * ratio);
   }
+#if defined(GLINT_AVX2)
+  static FloatLanes weight(FloatLanes pdf, FloatLanes other_pdf) {
+    const FloatLanes ratio = other_pdf / pdf;
+    const FloatLanes w = 1.0f / (1.0f + ratio * ratio);
+    return select(pdf > 0.0f,
+                  select(pdf == std::numeric_limits<float>::infinity(), broadcast(1.0f), w),
+                  broadcast(0.0f));
+  }
+#endif
 };
 
 /// Next-event estimation with multiple importance sampling: at every diffuse hit from which a
@@ -63,6 +86,13 @@ struct EmitterSampling {
   static float bounce_weight(float bounce_pdf, float light_pdf) {
     return Heuristic::weight(bounce_pdf, light_pdf);
   }
+#if defined(GLINT_AVX2)
+  /// For heuristics with a lane-wise weight.
+  static FloatLanes light_weight(FloatLanes light_pdf, FloatLanes bounce_pdf) requires requires {
+    Heuristic::weight(light_pdf, bounce_pdf);
+  }
+  { return Heuristic::weight(light_pdf, bounce_pdf); }
+#endif
 };
 
 /// Next-event estimation alone: emitters are reached only by light samples, and a bounce that
@@ -72,6 +102,11 @@ struct EmitterSamplingOnly {
   static constexpr bool samples_emitters = true;
   static float light_weight(float, float) { return 1.0f; }
   static float bounce_weight(float, float) { return 0.0f; }
+#if defined(GLINT_AVX2)
+  static FloatLanes light_weight(FloatLanes, FloatLanes) {
+    return broadcast(1.0f);
+  }
+#endif
 };
 
 static_assert(MisHeuristic<BalanceHeuristic> && MisHeuristic<PowerHeuristic>);

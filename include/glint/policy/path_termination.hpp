@@ -11,6 +11,11 @@ namespace glint {
 struct FixedDepth {
   static constexpr bool uses_roulette = false;
   static float continue_probability(int, float) { return 1.0f; }
+#if defined(GLINT_AVX2)
+  static FloatLanes continue_probability(IntLanes, FloatLanes) {
+    return broadcast(1.0f);
+  }
+#endif
 };
 
 /// Russian roulette after three bounces, as pbrt-v4 plays it: a path whose throughput (the
@@ -26,6 +31,13 @@ struct RussianRoulette {
     if (depth < kMinimumBounces) return 1.0f;
     return std::fmin(throughput, 1.0f);
   }
+  /// std::fmin's rule for NaN: a NaN throughput continues with probability 1.
+#if defined(GLINT_AVX2)
+  static FloatLanes continue_probability(IntLanes depth, FloatLanes throughput) {
+    const FloatLanes p = select(throughput < 1.0f, throughput, broadcast(1.0f));
+    return select(depth < kMinimumBounces, broadcast(1.0f), p);
+  }
+#endif
 };
 
 static_assert(PathTermination<FixedDepth> && PathTermination<RussianRoulette>);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "glint/geometry/ray.hpp"
+#include "glint/math/lanes.hpp"
 #include "glint/scene/scene_description.hpp"
 
 namespace glint {
@@ -33,6 +34,20 @@ class Camera {
     // ray grows as 1/cos of its angle to it.
     ray.t_min = near_ / glm::dot(ray.direction, forward_);
     return ray;
+  }
+
+#if defined(GLINT_AVX2)
+  /// ray_through for eight film points: the directions and t_min (the origin is position()).
+  void rays_through(const Vec2Lanes& film, Vec3Lanes& direction, FloatLanes& t_min) const {
+    const FloatLanes sx = (film.x - half_width_) * pixel_scale_;
+    const FloatLanes sy = (half_height_ - film.y) * pixel_scale_;
+    direction = normalize(Vec3Lanes::broadcast(forward_) + sx * Vec3Lanes::broadcast(right_) +
+                          sy * Vec3Lanes::broadcast(up_));
+    t_min = near_ / dot(direction, Vec3Lanes::broadcast(forward_));
+  }
+#endif
+  const Vec3& position() const {
+    return position_;
   }
 
  private:

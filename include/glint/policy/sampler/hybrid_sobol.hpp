@@ -28,6 +28,57 @@ class HybridSobolSampler {
     return {u, rng_.next_float()};
   }
 
+#if defined(GLINT_AVX2)
+  /// Eight samplers, one per lane: each lane's request goes to Sobol' or to PCG32 as that
+  /// lane's own count of requests says, and a part is computed only if some lane needs it.
+  class Lanes {
+   public:
+    void set_lane(int i, const HybridSobolSampler& s) {
+      sobol_.set_lane(i, s.sobol_);
+      rng_.set_lane(i, s.rng_);
+      requests_[i] = s.requests_;
+    }
+    void get_lane(int i, HybridSobolSampler& s) const {
+      sobol_.get_lane(i, s.sobol_);
+      rng_.get_lane(i, s.rng_);
+      s.requests_ = requests_[i];
+    }
+    FloatLanes next_1d(IntLanes mask) {
+      const IntLanes sobol = mask & by_sobol();
+      const IntLanes independent = mask & ~sobol;
+      requests_ = select(mask, requests_ + 1u, requests_);
+      FloatLanes value = broadcast(0.0f);
+      if (lane_bits(sobol) != 0) value = sobol_.next_1d(sobol);
+      if (lane_bits(independent) != 0)
+        value = select(independent, rng_.next_float(independent), value);
+      return value;
+    }
+    Vec2Lanes next_2d(IntLanes mask) {
+      const IntLanes sobol = mask & by_sobol();
+      const IntLanes independent = mask & ~sobol;
+      requests_ = select(mask, requests_ + 1u, requests_);
+      Vec2Lanes value{broadcast(0.0f), broadcast(0.0f)};
+      if (lane_bits(sobol) != 0) value = sobol_.next_2d(sobol);
+      if (lane_bits(independent) != 0) {
+        const FloatLanes u = rng_.next_float(independent);
+        value = {select(independent, u, value.x),
+                 select(independent, rng_.next_float(independent), value.y)};
+      }
+      return value;
+    }
+
+   private:
+    IntLanes by_sobol() const {
+      // requests_ < kSobolRequests, unsigned: both below 2^31, so the signed comparison agrees.
+      return std::bit_cast<IntLanes>(requests_) < std::int32_t(kSobolRequests);
+    }
+
+    typename SobolSampler::Lanes sobol_;
+    Pcg32::Lanes rng_;
+    UintLanes requests_{};
+  };
+#endif
+
  private:
   SobolSampler sobol_;
   Pcg32 rng_;

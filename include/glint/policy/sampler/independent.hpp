@@ -19,6 +19,23 @@ class IndependentSampler {
     return {u, rng_.next_float()};
   }
 
+#if defined(GLINT_AVX2)
+  /// Eight samplers, one per lane; a lane outside a draw's mask keeps its state.
+  class Lanes {
+   public:
+    void set_lane(int i, const IndependentSampler& s) { rng_.set_lane(i, s.rng_); }
+    void get_lane(int i, IndependentSampler& s) const { rng_.get_lane(i, s.rng_); }
+    FloatLanes next_1d(IntLanes mask) { return rng_.next_float(mask); }
+    Vec2Lanes next_2d(IntLanes mask) {
+      const FloatLanes u = rng_.next_float(mask);
+      return {u, rng_.next_float(mask)};
+    }
+
+   private:
+    Pcg32::Lanes rng_;
+  };
+#endif
+
  private:
   Pcg32 rng_;
 };

@@ -24,6 +24,14 @@ constexpr std::uint64_t dimension_key(std::uint64_t pixel_key, std::uint32_t dim
                                       std::uint32_t salt = 0) {
   return mix_bits(pixel_key + (std::uint64_t{dimension} * 4 + salt + 1) * kGoldenGamma);
 }
+#if defined(GLINT_AVX2)
+inline Uint64Lanes dimension_key(const Uint64Lanes& pixel_key, UintLanes dimension,
+                                 std::uint32_t salt) {
+  const Uint64Lanes d = Uint64Lanes::from(dimension);
+  return mix_bits(pixel_key + ((d << 2) + Uint64Lanes::broadcast(std::uint64_t{salt} + 1)) *
+                                  Uint64Lanes::broadcast(kGoldenGamma));
+}
+#endif
 
 }  // namespace detail
 

@@ -50,6 +50,57 @@ class SobolSampler {
     return {to_float(x), to_float(y)};
   }
 
+#if defined(GLINT_AVX2)
+  /// Eight samplers, one per lane, drawing the same values as eight SobolSamplers would: the
+  /// hashes are integer arithmetic, exact in SIMD lanes. A lane outside a draw's mask keeps its
+  /// state.
+  class Lanes {
+   public:
+    void set_lane(int i, const SobolSampler& s) {
+      pixel_key_.set_lane(i, s.pixel_key_);
+      reversed_index_[i] = s.reversed_index_;
+      dimension_[i] = s.dimension_;
+    }
+    void get_lane(int i, SobolSampler& s) const {
+      s.pixel_key_ = pixel_key_.lane(i);
+      s.reversed_index_ = reversed_index_[i];
+      s.dimension_ = dimension_[i];
+    }
+    FloatLanes next_1d(IntLanes mask) {
+      const UintLanes dimension = advance(mask);
+      return to_floats(owen_scramble_reversed(shuffled_index(dimension),
+                                              detail::dimension_key(pixel_key_, dimension, 1)));
+    }
+    Vec2Lanes next_2d(IntLanes mask) {
+      const UintLanes dimension = advance(mask);
+      const UintLanes index = shuffled_index(dimension);
+      const UintLanes x =
+          owen_scramble_reversed(index, detail::dimension_key(pixel_key_, dimension, 1));
+      const UintLanes y = owen_scramble_reversed(sobol_second_dimension_reversed(index),
+                                                 detail::dimension_key(pixel_key_, dimension, 2));
+      return {to_floats(x), to_floats(y)};
+    }
+
+   private:
+    UintLanes advance(IntLanes mask) {
+      const UintLanes dimension = dimension_;
+      dimension_ = select(mask, dimension + 1u, dimension);
+      return dimension;
+    }
+    UintLanes shuffled_index(UintLanes dimension) const {
+      return detail::reverse_bits(
+          owen_scramble_reversed(reversed_index_, detail::dimension_key(pixel_key_, dimension, 0)));
+    }
+    static FloatLanes to_floats(UintLanes reversed_fraction) {
+      return unit_floats(detail::reverse_bits(reversed_fraction));
+    }
+
+    Uint64Lanes pixel_key_{};
+    UintLanes reversed_index_{};
+    UintLanes dimension_{};
+  };
+#endif
+
  private:
   std::uint32_t shuffled_index(std::uint32_t dimension) const {
     // owen_scramble(index), with the index's reversal done once in start().

@@ -7,26 +7,36 @@
 // finished paths and refill the batch with the next samples of the tile. This is the shape of
 // pbrt-v4's wavefront/ integrator and Mitsuba 3's wavefront mode, on a CPU thread's scale.
 //
-// Each path's arithmetic is ChainEstimator's (render/estimators/chain.hpp): the same
-// PathContext and ReportMaterial, the same draws from the same sampler in the same order, and
-// batched queries that answer exactly what the single-ray ones do. Only where light found by a
-// shadow or emitter ray is added differs (after the batch's rays are traced instead of at once),
-// which can move a sample's last bits. A path's arithmetic never depends on the other paths of
-// its batch, on its place in the batch or on the thread, and a pixel's samples are added to its
-// sum in index order: the image is the same bit for bit whatever the thread count.
+// Each path follows ChainEstimator (render/estimators/chain.hpp): the same draws from the same
+// sampler in the same order, and batched queries that answer exactly what the single-ray ones
+// do. Shading runs eight paths at a time (shade_lanes: the hit, the material, the light rays,
+// roulette and the next direction in SIMD lanes, the sampler's draws lane by lane) wherever the
+// configuration's policies have lane-wise forms (LanewisePolicies) and the build has AVX2;
+// otherwise path by path with ChainEstimator's own code (shade_path). The lane-wise arithmetic
+// is not the scalar code's to the last bit (a polynomial sin and cos, other multiply-adds), so
+// images differ from the scalar renderer's by rounding, and a path that grazes an edge may go
+// another way. A path's arithmetic never depends on the other paths of its batch, on its place
+// in the batch or on the thread, and a pixel's samples are added to its sum in index order:
+// the image is the same bit for bit whatever the thread count.
 
+#include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "glint/config.hpp"
 #include "glint/detail/aligned_array.hpp"
 #include "glint/geometry/ray_batch.hpp"
 #include "glint/image/pixel_sums.hpp"
+#include "glint/math/lanes.hpp"
+#include "glint/math/sampling.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/estimators/path_context.hpp"
 #include "glint/render/render_settings.hpp"
@@ -57,6 +67,33 @@ template <typename C>
 concept WavefrontConfig =
     RenderConfig<C> && std::same_as<typename C::material_model, StochasticMaterialModel>;
 
+#if defined(GLINT_AVX2)
+/// Whether every policy the camera and shading stages call has a lane-wise form (eight values
+/// at once): then WavefrontExecution runs those stages eight paths at a time. A user's policy
+/// without one still renders, path by path. (The sampler and the sphere shading are called
+/// lane by lane.)
+template <typename C>
+concept LanewisePolicies = requires(Vec2Lanes u, FloatLanes value, IntLanes depth, float sigma) {
+  { C::antialiasing::offset(u, sigma) } -> std::same_as<Vec2Lanes>;
+  { C::diffuse_sampling::sample(u) } -> std::same_as<DirectionSampleLanes>;
+  { C::diffuse_sampling::pdf(value) } -> std::same_as<FloatLanes>;
+  { C::fresnel::reflectance(value, value, value) } -> std::same_as<FloatLanes>;
+  { C::light_sampling::light_weight(value, value) } -> std::same_as<FloatLanes>;
+  { C::path_termination::continue_probability(depth, value) } -> std::same_as<FloatLanes>;
+};
+
+/// A sampler with a form that draws for eight paths at once, in SIMD lanes: S::Lanes, which
+/// loads and stores lane i from and to a sampler and draws for the lanes of a mask (the others
+/// keep their state). Without one, WavefrontExecution draws path by path.
+template <typename S>
+concept LanewiseSampler = requires(typename S::Lanes lanes, const S& from, S& to, IntLanes mask) {
+  lanes.set_lane(0, from);
+  lanes.get_lane(0, to);
+  { lanes.next_1d(mask) } -> std::same_as<FloatLanes>;
+  { lanes.next_2d(mask) } -> std::same_as<Vec2Lanes>;
+};
+#endif
+
 template <RenderConfig C>
 class WavefrontExecution {
   static_assert(WavefrontConfig<C>,
@@ -70,6 +107,12 @@ class WavefrontExecution {
   using Context = PathContext<C>;
   using Origin = typename Context::Origin;
   static constexpr bool kSamplesEmitters = Context::kSamplesEmitters;
+#if defined(GLINT_AVX2)
+  /// Whether the camera and shading stages run eight paths at a time (see LanewisePolicies).
+  static constexpr bool kUsesLanes = LanewisePolicies<C>;
+#else
+  static constexpr bool kUsesLanes = false;
+#endif
 
   /// Paths in flight per thread: enough that eight-ray batches stay full while paths end at
   /// different depths, few enough that the batch's state stays in the core's L2 cache.
@@ -85,6 +128,38 @@ class WavefrontExecution {
         context_(scene, settings.max_depth),
         camera_(scene.camera(), settings.width, settings.height),
         settings_(settings) {}
+
+  /// Colours of the batch's paths, a column per channel, so that eight paths' colours load as
+  /// three SIMD registers.
+  class ColorColumns {
+   public:
+    explicit ColorColumns(int count) : x_(std::size_t(count)), y_(x_), z_(x_) {}
+    Color get(int p) const {
+      const auto u = std::size_t(p);
+      return {x_[u], y_[u], z_[u]};
+    }
+    void set(int p, const Color& c) {
+      const auto u = std::size_t(p);
+      x_[u] = c.x;
+      y_[u] = c.y;
+      z_[u] = c.z;
+    }
+#if defined(GLINT_AVX2)
+    Vec3Lanes lanes(int base) const {
+      const auto u = std::size_t(base);
+      return {load_lanes(&x_[u]), load_lanes(&y_[u]), load_lanes(&z_[u])};
+    }
+    void set_lanes(int base, const Vec3Lanes& c) {
+      const auto u = std::size_t(base);
+      store_lanes(&x_[u], c.x);
+      store_lanes(&y_[u], c.y);
+      store_lanes(&z_[u], c.z);
+    }
+#endif
+
+   private:
+    detail::AlignedArray<float> x_, y_, z_;
+  };
 
   /// A thread's batch of paths and its queues, allocated once per render.
   class ThreadState {
@@ -120,19 +195,19 @@ class WavefrontExecution {
     // queries; path p is lane p % 8 of block p / 8.
     detail::AlignedArray<RayBatch> rays;
     detail::AlignedArray<HitBatch> hits;
-    std::vector<Color> throughput;
-    std::vector<Color> radiance;
-    std::vector<int> depth;
+    ColorColumns throughput;
+    ColorColumns radiance;
+    detail::AlignedArray<std::int32_t> depth;
     std::vector<std::uint64_t> sample;  ///< the path's sample, numbered within the tile's work
     std::vector<Origin> from;
     std::vector<SamplerType> sampler;
 
     // What the current bounce waits for: light that the queued rays may bring, added once they
     // are traced, in ChainEstimator's order (point lights, then the emitter sample).
-    std::vector<Color> shading_throughput;  ///< the throughput at the hit
-    std::vector<Color> albedo;
-    std::vector<Color> irradiance;
-    std::vector<Color> emitter_light;
+    ColorColumns shading_throughput;  ///< the throughput at the hit
+    ColorColumns albedo;
+    ColorColumns irradiance;
+    ColorColumns emitter_light;
     std::vector<std::uint8_t> pending;  ///< kDirectLight | kEmitterRay | kEmitterVisible
     std::vector<std::uint8_t> ends;     ///< the path ends after this bounce
 
@@ -162,12 +237,13 @@ class WavefrontExecution {
     std::uint64_t summed = 0;
     int live = 0;
     for (;;) {
+      const int refill = live;
       while (live < kPaths && started < total && started - summed < std::uint64_t(kWindow))
-        start_path(state, live++, started++, piece);
+        state.sample[std::size_t(live++)] = started++;
+      start_paths(state, refill, live, piece);
       if (live == 0) break;
       trace_closest_hits(state, live, counters);
-      for (int p = 0; p < live; ++p)
-        shade(state, p, counters);
+      shade(state, live, counters);
       trace_shadow_rays(state);
       trace_emitter_rays(state);
       live = gather_and_retire(state, live);
@@ -209,11 +285,29 @@ class WavefrontExecution {
     return count >= RayBatch::kWidth ? RayBatch::kAllLanes : (LaneMask(1) << count) - 1;
   }
 
-  /// Path p starts sample n: the camera ray through its point of the pixel, as
-  /// ScalarExecution::add_samples makes it.
-  GLINT_FLATTEN void start_path(ThreadState& state, int p, std::uint64_t n,
-                                const PieceLayout& piece) const {
+  /// Paths first .. last-1 start their samples (state.sample): the camera rays through their
+  /// points of the pixels, as ScalarExecution::add_samples makes them.
+  GLINT_STAGE void start_paths(ThreadState& state, int first, int last,
+                               const PieceLayout& piece) const {
+    if (first == last) return;
+#if defined(GLINT_AVX2)
+    if constexpr (kUsesLanes) {
+      const int width = RayBatch::kWidth;
+      for (int base = first - first % width; base < last; base += width) {
+        const LaneMask lanes = lanes_below(last - base) & ~lanes_below(std::max(0, first - base));
+        start_lanes(state, base, lanes, piece);
+      }
+      return;
+    }
+#endif
+    for (int p = first; p < last; ++p)
+      start_path(state, p, piece);
+  }
+
+  /// Path p starts sample state.sample[p].
+  GLINT_FLATTEN void start_path(ThreadState& state, int p, const PieceLayout& piece) const {
     const auto u = std::size_t(p);
+    const std::uint64_t n = state.sample[u];
     const int x = piece.x(n);
     const int y = piece.y(n);
     SamplerType& sampler = state.sampler[u];
@@ -223,12 +317,50 @@ class WavefrontExecution {
     if constexpr (C::antialiasing::enabled)
       film += C::antialiasing::offset(sampler.next_2d(), settings_.antialias_sigma);
     set_ray(state, p, camera_.ray_through(film));
-    state.throughput[u] = Color(1.0f);
-    state.radiance[u] = Color(0.0f);
+    state.throughput.set(p, Color(1.0f));
+    state.radiance.set(p, Color(0.0f));
     state.depth[u] = 0;
     state.from[u] = Origin{};
-    state.sample[u] = n;
   }
+
+#if defined(GLINT_AVX2)
+  /// start_path for the lanes of `lanes` of paths base .. base+7: the sampler lane by lane,
+  /// the filter offset and the camera rays in SIMD lanes.
+  GLINT_FLATTEN void start_lanes(ThreadState& state, int base, LaneMask lanes,
+                                 const PieceLayout& piece) const {
+    Vec2Lanes film{};
+    for_each_lane(lanes, [&](int i) {
+      const auto p = std::size_t(base + i);
+      const std::uint64_t n = state.sample[p];
+      const int x = piece.x(n);
+      const int y = piece.y(n);
+      SamplerType& sampler = state.sampler[p];
+      sampler.start(PixelSample{std::uint32_t(x), std::uint32_t(y), piece.index(n),
+                                std::uint32_t(settings_.samples_per_pixel), settings_.seed});
+      film.x[i] = float(x) + 0.5f;
+      film.y[i] = float(y) + 0.5f;
+      state.depth[p] = 0;
+      state.from[p] = Origin{};
+    });
+    if constexpr (C::antialiasing::enabled) {
+      const Vec2Lanes u = SamplerBlock(state.sampler, base, lanes).next_2d(lanes);
+      const Vec2Lanes offset = C::antialiasing::offset(u, settings_.antialias_sigma);
+      film = {film.x + offset.x, film.y + offset.y};
+    }
+    RayLanes ray;
+    ray.origin = Vec3Lanes::broadcast(camera_.position());
+    camera_.rays_through(film, ray.direction, ray.t_min);
+    ray.t_max = broadcast(kInfinity);
+    ray.origin_sphere = broadcast(std::int32_t(kNoSphere));
+    ray.heads_into_origin_sphere = broadcast(0);
+    const IntLanes mask = lanes_of_bits(lanes);
+    set_rays(state.rays[std::size_t(base / RayBatch::kWidth)], mask, ray);
+    state.throughput.set_lanes(
+        base, select(mask, Vec3Lanes::broadcast(Color(1.0f)), state.throughput.lanes(base)));
+    state.radiance.set_lanes(
+        base, select(mask, Vec3Lanes::broadcast(Color(0.0f)), state.radiance.lanes(base)));
+  }
+#endif
 
   GLINT_STAGE void trace_closest_hits(ThreadState& state, int live, TraceCounters& counters) const {
     counters.rays += std::uint64_t(live);
@@ -238,17 +370,28 @@ class WavefrontExecution {
     }
   }
 
+  GLINT_STAGE void shade(ThreadState& state, int live, TraceCounters& counters) const {
+    if constexpr (kUsesLanes) {
+      for (int base = 0; base < live; base += RayBatch::kWidth)
+        shade_lanes(state, base, lanes_below(live - base), counters);
+    } else {
+      for (int p = 0; p < live; ++p)
+        shade_path(state, p, counters);
+    }
+  }
+
   /// ChainEstimator's loop body for path p at the hit its ray found, up to the rays it needs
   /// traced: their light is added by gather_and_retire.
-  GLINT_FLATTEN void shade(ThreadState& state, int p, TraceCounters& counters) const {
+  GLINT_FLATTEN void shade_path(ThreadState& state, int p, TraceCounters& counters) const {
     const auto u = std::size_t(p);
     state.pending[u] = 0;
     state.ends[u] = 1;
     const SphereHit hit = hit_of(state, p);
-    Color& radiance = state.radiance[u];
-    const Color& throughput = state.throughput[u];
+    Color radiance = state.radiance.get(p);
+    const Color throughput = state.throughput.get(p);
     if (hit.sphere == kNoSphere) {
       radiance += throughput * context_.background();
+      state.radiance.set(p, radiance);
       return;
     }
     const Ray ray = ray_of(state, p);
@@ -257,14 +400,15 @@ class WavefrontExecution {
       radiance += throughput * context_.weighted_emission(ray, hit, interaction, state.from[u]);
     else
       radiance += throughput * interaction.material().emission;
+    state.radiance.set(p, radiance);
     const ReportMaterial<C> material(interaction, ray.direction);
     SamplerType& sampler = state.sampler[u];
     const int depth = state.depth[u];
-    state.shading_throughput[u] = throughput;
+    state.shading_throughput.set(p, throughput);
     if (material.has_lobe(Lobe::diffuse)) {
       state.pending[u] = kDirectLight;
-      state.albedo[u] = material.albedo();
-      state.irradiance[u] = Color(0.0f);
+      state.albedo.set(p, material.albedo());
+      state.irradiance.set(p, Color(0.0f));
       context_.for_each_light_ray(interaction, [&](const Ray& shadow_ray, const Color& light) {
         ++counters.rays;
         queue_shadow_ray(state, p, shadow_ray, light);
@@ -272,13 +416,13 @@ class WavefrontExecution {
       if constexpr (kSamplesEmitters)
         if (depth < context_.max_depth()) {
           state.pending[u] |= kEmitterRay;
-          state.emitter_light[u] = Color(0.0f);
+          state.emitter_light.set(p, Color(0.0f));
           const std::optional<typename Context::EmitterRay> emitter = context_.emitter_ray(
               interaction, material, [&](const Vec3& direction) { return material.pdf(direction); },
               sampler);
           if (emitter) {
             ++counters.rays;
-            state.emitter_light[u] = emitter->light;
+            state.emitter_light.set(p, emitter->light);
             queue_emitter_ray(state, p, emitter->ray, emitter->emitter_sphere);
           }
         }
@@ -291,9 +435,418 @@ class WavefrontExecution {
     const ScatterSample next = material.sample(sampler);
     if constexpr (kSamplesEmitters) state.from[u] = Context::origin_of(next);
     set_ray(state, p, Context::continue_ray(interaction, next.direction));
-    state.throughput[u] *= next.tint * (next.factor * *continuation);
+    state.throughput.set(p, throughput * (next.tint * (next.factor * *continuation)));
     state.depth[u] = depth + 1;
     state.ends[u] = 0;
+  }
+
+#if defined(GLINT_AVX2)
+  /// The samplers of paths base .. base+7 as one: in SIMD lanes when the sampler has a Lanes
+  /// form (loaded here, stored back when the block goes), one by one otherwise. Each draw is
+  /// for the lanes of a mask; the values of the other lanes are unspecified.
+  class SamplerBlock {
+   public:
+    SamplerBlock(std::vector<SamplerType>& samplers, int base, LaneMask lanes)
+        : samplers_(samplers), base_(std::size_t(base)), lanes_(lanes) {
+      if constexpr (kLanes)
+        for_each_lane(lanes_,
+                      [&](int i) { lanes_state_.set_lane(i, samplers_[base_ + std::size_t(i)]); });
+    }
+    ~SamplerBlock() {
+      if constexpr (kLanes)
+        for_each_lane(lanes_,
+                      [&](int i) { lanes_state_.get_lane(i, samplers_[base_ + std::size_t(i)]); });
+    }
+    SamplerBlock(const SamplerBlock&) = delete;
+    SamplerBlock& operator=(const SamplerBlock&) = delete;
+
+    FloatLanes next_1d(LaneMask mask) {
+      if constexpr (kLanes) {
+        return lanes_state_.next_1d(lanes_of_bits(mask));
+      } else {
+        FloatLanes value = broadcast(0.0f);
+        for_each_lane(mask, [&](int i) { value[i] = samplers_[base_ + std::size_t(i)].next_1d(); });
+        return value;
+      }
+    }
+    Vec2Lanes next_2d(LaneMask mask) {
+      if constexpr (kLanes) {
+        return lanes_state_.next_2d(lanes_of_bits(mask));
+      } else {
+        Vec2Lanes value{broadcast(0.0f), broadcast(0.0f)};
+        for_each_lane(mask, [&](int i) {
+          const Vec2 u = samplers_[base_ + std::size_t(i)].next_2d();
+          value.x[i] = u.x;
+          value.y[i] = u.y;
+        });
+        return value;
+      }
+    }
+
+   private:
+    static constexpr bool kLanes = LanewiseSampler<SamplerType>;
+    struct NoLanes {};
+    std::vector<SamplerType>& samplers_;
+    std::size_t base_;
+    LaneMask lanes_;
+    [[no_unique_address]] std::conditional_t<kLanes, typename SamplerType::Lanes, NoLanes>
+        lanes_state_{};
+  };
+
+  /// What shade_lanes reads of the spheres that eight paths hit, gathered lane by lane.
+  struct SurfaceLanes {
+    Vec3Lanes center;
+    FloatLanes diffuse, mirror, transparent, ior, ior_outside;
+    Vec3Lanes diffuse_color, mirror_color, transparent_color, emission;
+    IntLanes fully_transparent;  ///< a mask
+    LaneMask emitters = 0;       ///< lanes whose sphere is an emitter
+    LaneMask patterned = 0;      ///< lanes whose sphere's colour depends on the point
+
+    SurfaceLanes(const Scene& scene, const HitBatch& hits, LaneMask lanes) {
+      constexpr int kFields = 20;
+      alignas(32) float field[kFields][kLaneCount] = {};
+      alignas(32) std::int32_t fully[kLaneCount] = {};
+      for_each_lane(lanes, [&](int i) {
+        const SurfaceProperties& s = scene.surface(hits.sphere[i]);
+        const Material& m = s.material;
+        const float values[kFields] = {s.center.x,
+                                       s.center.y,
+                                       s.center.z,
+                                       m.diffuse,
+                                       m.mirror,
+                                       m.transparent,
+                                       m.ior,
+                                       s.ior_outside,
+                                       m.diffuse_color.x,
+                                       m.diffuse_color.y,
+                                       m.diffuse_color.z,
+                                       m.mirror_color.x,
+                                       m.mirror_color.y,
+                                       m.mirror_color.z,
+                                       m.transparent_color.x,
+                                       m.transparent_color.y,
+                                       m.transparent_color.z,
+                                       m.emission.x,
+                                       m.emission.y,
+                                       m.emission.z};
+        for (int k = 0; k < kFields; ++k)
+          field[k][i] = values[k];
+        fully[i] = s.fully_transparent ? -1 : 0;
+        if (s.emitter != kNotAnEmitter) emitters |= LaneMask(1) << i;
+        if (s.shading != ShadingKind::uniform) patterned |= LaneMask(1) << i;
+      });
+      const auto vec = [&](int k) {
+        return Vec3Lanes{load_lanes(field[k]), load_lanes(field[k + 1]), load_lanes(field[k + 2])};
+      };
+      center = vec(0);
+      diffuse = load_lanes(field[3]);
+      mirror = load_lanes(field[4]);
+      transparent = load_lanes(field[5]);
+      ior = load_lanes(field[6]);
+      ior_outside = load_lanes(field[7]);
+      diffuse_color = vec(8);
+      mirror_color = vec(11);
+      transparent_color = vec(14);
+      emission = vec(17);
+      fully_transparent = load_lanes(fully);
+    }
+  };
+
+  /// shade_path for the paths base .. base+7 of `lanes` at once: the same steps and the same
+  /// draws in the same order for each path, the arithmetic in SIMD lanes (masks where paths
+  /// differ), the draws and the queueing of rays lane by lane.
+  GLINT_FLATTEN void shade_lanes(ThreadState& state, int base, LaneMask lanes,
+                                 TraceCounters& counters) const {
+    const auto block = std::size_t(base / RayBatch::kWidth);
+    const RayBatch& ray = state.rays[block];
+    const HitBatch& hit = state.hits[block];
+    IntLanes sphere;
+    std::memcpy(&sphere, hit.sphere, sizeof sphere);
+    const LaneMask hits = lanes & lane_bits(sphere != std::int32_t(kNoSphere));
+    const IntLanes hit_mask = lanes_of_bits(hits);
+    const Vec3Lanes throughput = state.throughput.lanes(base);
+    Vec3Lanes radiance = state.radiance.lanes(base);
+    radiance = select(hit_mask, radiance,
+                      radiance + throughput * Vec3Lanes::broadcast(context_.background()));
+    for (int i = 0; i < kLaneCount; ++i) {
+      state.pending[std::size_t(base + i)] = 0;
+      state.ends[std::size_t(base + i)] = 1;
+    }
+    if (hits == 0) {
+      state.radiance.set_lanes(base, radiance);
+      return;
+    }
+
+    // The hit, as Scene::surface_hit and detail::interface_at set it up.
+    const SurfaceLanes surface(scene_, hit, hits);
+    const Vec3Lanes direction = {load_lanes(ray.direction_x), load_lanes(ray.direction_y),
+                                 load_lanes(ray.direction_z)};
+    const Vec3Lanes origin = {load_lanes(ray.origin_x), load_lanes(ray.origin_y),
+                              load_lanes(ray.origin_z)};
+    const Vec3Lanes point = origin + load_lanes(hit.t) * direction;
+    const Vec3Lanes normal = normalize(point - surface.center);
+    const FloatLanes cos_out = dot(direction, normal);
+    const IntLanes from_inside = cos_out > 0.0f;
+    const Vec3Lanes facing = select(from_inside, -normal, normal);
+    const FloatLanes cos_incident = abs_lanes(cos_out);
+
+    // Emission, weighted against light sampling where an emitter was reached by a bounce.
+    FloatLanes emission_weight = broadcast(1.0f);
+    if constexpr (kSamplesEmitters)
+      for_each_lane(surface.emitters, [&](int i) {
+        const int p = base + i;
+        const BounceOrigin& from = state.from[std::size_t(p)];
+        if (!(from.pdf > 0.0f)) return;
+        const Ray lane_ray = ray_of(state, p);
+        const SphereHit lane_hit = hit_of(state, p);
+        const SurfaceInteraction interaction = context_.interaction(lane_ray, lane_hit);
+        emission_weight[i] = context_.emission_weight(lane_ray, lane_hit, interaction,
+                                                      interaction.surface->emitter, from);
+      });
+    radiance =
+        select(hit_mask, radiance + throughput * (surface.emission * emission_weight), radiance);
+    state.radiance.set_lanes(base, radiance);
+    state.shading_throughput.set_lanes(base, throughput);
+
+    // The material (ReportMaterial's terms).
+    Vec3Lanes albedo = surface.diffuse_color;
+    for_each_lane(surface.patterned & hits, [&](int i) {
+      const SurfaceProperties& s = scene_.surface(hit.sphere[i]);
+      albedo.set_lane(
+          i, C::sphere_shading::color(s.shading, s.material.diffuse_color, normal.lane(i)));
+    });
+    const IntLanes has_diffuse = hit_mask & (surface.diffuse > 0.0f);
+    albedo = select(has_diffuse, surface.diffuse * albedo, Vec3Lanes::broadcast(Color(0.0f)));
+    const FloatLanes total = surface.diffuse + surface.mirror + surface.transparent;
+    const IntLanes depth = load_lanes(&state.depth[std::size_t(base)]);
+    const LaneMask diffuse_lanes = lane_bits(has_diffuse);
+    SamplerBlock draws(state.sampler, base, hits);
+
+    // Light: the point lights' shadow rays and the emitter sample, at diffuse hits.
+    if (diffuse_lanes != 0) {
+      state.albedo.set_lanes(base, albedo);
+      state.irradiance.set_lanes(base, Vec3Lanes::broadcast(Color(0.0f)));
+      for_each_lane(diffuse_lanes,
+                    [&](int i) { state.pending[std::size_t(base + i)] = kDirectLight; });
+      for (const PointLight& light : scene_.lights()) {
+        const Vec3Lanes to_light = Vec3Lanes::broadcast(light.position) - point;
+        const FloatLanes distance2 = dot(to_light, to_light);
+        const FloatLanes distance = sqrt_lanes(distance2);
+        const Vec3Lanes toward = to_light / distance;
+        const FloatLanes cosine = dot(toward, facing);
+        const LaneMask lit = diffuse_lanes & lane_bits(cosine > 0.0f);
+        if (lit == 0) continue;
+        const Vec3Lanes irradiance =
+            ((light.intensity * cosine) / distance2) * Vec3Lanes::broadcast(light.color);
+        const IntLanes heads_in = dot(toward, normal) < 0.0f;
+        for_each_lane(lit, [&](int i) {
+          ++counters.rays;
+          queue_shadow_ray(state, base + i,
+                           leaving_ray(point.lane(i), toward.lane(i), hit.sphere[i],
+                                       heads_in[i] != 0, distance[i]),
+                           irradiance.lane(i));
+        });
+      }
+      if constexpr (kSamplesEmitters)
+        sample_emitters_lanes(state, base, diffuse_lanes & lane_bits(depth < context_.max_depth()),
+                              hit, point, normal, facing, from_inside, albedo,
+                              surface.diffuse / total, draws, counters);
+    }
+
+    // Roulette and the lobe, in ChainEstimator's order.
+    LaneMask going_on = hits & lane_bits((depth < context_.max_depth()) & (total > 0.0f));
+    FloatLanes continuation = broadcast(1.0f);
+    if constexpr (C::path_termination::uses_roulette) {
+      const FloatLanes p =
+          C::path_termination::continue_probability(depth, max_component(throughput));
+      const LaneMask played = going_on & lane_bits(p < 1.0f);
+      if (played != 0) going_on &= ~(played & lane_bits(draws.next_1d(played) >= p));
+      continuation = select(p < 1.0f, 1.0f / p, continuation);
+    }
+    if (going_on == 0) return;
+    const FloatLanes u_lobe = draws.next_1d(going_on) * total;
+    const IntLanes choose_diffuse = u_lobe < surface.diffuse;
+    const IntLanes choose_mirror = ~choose_diffuse & (u_lobe < surface.diffuse + surface.mirror);
+    const IntLanes choose_transmission = ~(choose_diffuse | choose_mirror);
+
+    // Transmission: refraction, or reflection on total internal reflection or by Fresnel.
+    const FloatLanes eta_incident = select(from_inside, surface.ior, surface.ior_outside);
+    const FloatLanes eta_transmitted = select(from_inside, surface.ior_outside, surface.ior);
+    const FloatLanes eta = eta_incident / eta_transmitted;
+    const FloatLanes sin2_transmitted = eta * eta * (1.0f - cos_incident * cos_incident);
+    const IntLanes total_internal = sin2_transmitted >= 1.0f;
+    const FloatLanes cos_transmitted =
+        sqrt_lanes(max_lanes(broadcast(0.0f), 1.0f - sin2_transmitted));
+    const Vec3Lanes reflected = direction + (2.0f * cos_incident) * facing;
+    const Vec3Lanes refracted =
+        normalize(eta * direction + (eta * cos_incident - cos_transmitted) * facing);
+    IntLanes reflect = total_internal;
+    const LaneMask diffuse_draws = going_on & lane_bits(choose_diffuse);
+    // One draw per path: the diffuse direction's or Fresnel's (never both).
+    const Vec2Lanes u_diffuse = draws.next_2d(diffuse_draws);
+    if constexpr (C::fresnel::enabled) {
+      const IntLanes by_fresnel = choose_transmission & ~total_internal & surface.fully_transparent;
+      const FloatLanes reflectance =
+          C::fresnel::reflectance(cos_incident, eta_incident, eta_transmitted);
+      const LaneMask fresnel_draws = going_on & lane_bits(by_fresnel);
+      if (fresnel_draws != 0)
+        reflect |= lanes_of_bits(fresnel_draws) & (draws.next_1d(fresnel_draws) < reflectance);
+    }
+
+    // Diffuse: a direction from C::diffuse_sampling in the frame of the facing normal.
+    const DirectionSampleLanes diffuse_sample = C::diffuse_sampling::sample(u_diffuse);
+    const Vec3Lanes diffuse_direction =
+        FrameLanes::around(facing).to_world(diffuse_sample.local_direction);
+
+    const Vec3Lanes next_direction = select(choose_diffuse, diffuse_direction,
+                                            select(choose_mirror | reflect, reflected, refracted));
+    const Vec3Lanes tint =
+        select(choose_diffuse, albedo,
+               select(choose_mirror, surface.mirror_color, surface.transparent_color));
+    const FloatLanes factor =
+        select(choose_diffuse, diffuse_sample.weight * kInvPi * total / surface.diffuse, total);
+    if constexpr (kSamplesEmitters) {
+      const FloatLanes pdf =
+          C::diffuse_sampling::pdf(diffuse_sample.local_direction.z) * (surface.diffuse / total);
+      for_each_lane(going_on, [&](int i) {
+        state.from[std::size_t(base + i)] = BounceOrigin{choose_diffuse[i] ? pdf[i] : 0.0f};
+      });
+    }
+
+    const IntLanes continues = lanes_of_bits(going_on);
+    state.throughput.set_lanes(
+        base, select(continues, throughput * (tint * (factor * continuation)), throughput));
+    store_lanes(&state.depth[std::size_t(base)], select(continues, depth + 1, depth));
+    set_rays(state.rays[block], continues,
+             {point, next_direction, broadcast(0.0f), broadcast(kInfinity), sphere,
+              dot(next_direction, normal) < 0.0f});
+    for_each_lane(going_on, [&](int i) { state.ends[std::size_t(base + i)] = 0; });
+  }
+
+  /// Eight rays in SIMD lanes (Ray's fields).
+  struct RayLanes {
+    Vec3Lanes origin, direction;
+    FloatLanes t_min, t_max;
+    IntLanes origin_sphere;
+    IntLanes heads_into_origin_sphere;  ///< a mask
+  };
+
+  /// Sets the lanes of `mask` of `rays` to `to`, as RayBatch::set would lane by lane.
+  static void set_rays(RayBatch& rays, IntLanes mask, const RayLanes& to) {
+    const auto update = [&](float* column, FloatLanes value) {
+      store_lanes(column, select(mask, value, load_lanes(column)));
+    };
+    update(rays.origin_x, to.origin.x);
+    update(rays.origin_y, to.origin.y);
+    update(rays.origin_z, to.origin.z);
+    update(rays.direction_x, to.direction.x);
+    update(rays.direction_y, to.direction.y);
+    update(rays.direction_z, to.direction.z);
+    update(rays.t_min, to.t_min);
+    update(rays.t_max, to.t_max);
+    IntLanes sphere;
+    std::memcpy(&sphere, rays.origin_sphere, sizeof sphere);
+    sphere = select(mask, to.origin_sphere, sphere);
+    std::memcpy(rays.origin_sphere, &sphere, sizeof sphere);
+    const LaneMask bits = lane_bits(mask);
+    rays.heads_into_origin_sphere =
+        (rays.heads_into_origin_sphere & ~bits) | (lane_bits(to.heads_into_origin_sphere) & bits);
+  }
+
+  /// The emitter sample of PathContext::emitter_ray for the lanes of `lanes` (diffuse hits
+  /// from which a bounce may follow): the draws lane by lane, the rest in SIMD lanes.
+  void sample_emitters_lanes(ThreadState& state, int base, LaneMask lanes, const HitBatch& hit,
+                             const Vec3Lanes& point, const Vec3Lanes& normal,
+                             const Vec3Lanes& facing, IntLanes from_inside, const Vec3Lanes& albedo,
+                             FloatLanes diffuse_probability, SamplerBlock& draws,
+                             TraceCounters& counters) const {
+    if (lanes == 0) return;
+    for_each_lane(lanes, [&](int i) { state.pending[std::size_t(base + i)] |= kEmitterRay; });
+    state.emitter_light.set_lanes(base, Vec3Lanes::broadcast(Color(0.0f)));
+    const EmitterTable& emitters = scene_.emitters();
+    if (emitters.empty()) return;
+    Vec3Lanes center{}, radiance{};
+    FloatLanes radius{}, probability{};
+    const FloatLanes u_choice = draws.next_1d(lanes);
+    const Vec2Lanes u = draws.next_2d(lanes);
+    LaneMask on_emitter = 0;
+    std::uint32_t emitter_sphere[kLaneCount] = {};
+    for_each_lane(lanes, [&](int i) {
+      const EmitterTable::Choice choice = emitters.choose(u_choice[i]);
+      const SphereEmitter& emitter = emitters[choice.index];
+      center.set_lane(i, emitter.center);
+      radiance.set_lane(i, emitter.radiance);
+      radius[i] = emitter.radius;
+      probability[i] = choice.probability;
+      emitter_sphere[i] = emitter.sphere;
+      if (emitter.sphere == hit.sphere[i]) on_emitter |= LaneMask(1) << i;
+    });
+    // EmitterView: from outside the cone; from inside (or from the emitter's inner surface)
+    // a point on its area; from its outer surface, nothing.
+    const Vec3Lanes to_center = center - point;
+    const FloatLanes distance2 = dot(to_center, to_center);
+    const IntLanes on = lanes_of_bits(on_emitter);
+    const IntLanes outside = ~on & (distance2 > radius * radius);
+    const IntLanes none = on & ~from_inside;
+
+    // Outside: uniform in the cone the sphere subtends (SphereEmitter::cone_one_minus_cos_max).
+    const FloatLanes distance = sqrt_lanes(distance2);
+    const FloatLanes sin2_max =
+        min_lanes(broadcast(1.0f), (radius / distance) * (radius / distance));
+    const FloatLanes cos2_max =
+        max_lanes(broadcast(0.0f), (distance - radius) * (distance + radius)) /
+        (distance * distance);
+    const FloatLanes one_minus_cos_max = sin2_max / (1.0f + sqrt_lanes(cos2_max));
+    const Vec3Lanes cone_direction = FrameLanes::around(to_center / distance)
+                                         .to_world(sample_uniform_cone_lanes(u, one_minus_cos_max));
+    const FloatLanes cone_pdf = uniform_cone_pdf_lanes(one_minus_cos_max);
+
+    // Inside: through a uniform point of the sphere's area.
+    const Vec3Lanes area_normal = sample_uniform_sphere_lanes(u);
+    const Vec3Lanes to_light = center + radius * area_normal - point;
+    const FloatLanes light_distance2 = dot(to_light, to_light);
+    const Vec3Lanes area_direction = to_light / sqrt_lanes(light_distance2);
+    const FloatLanes area_cosine = abs_lanes(dot(area_direction, area_normal));
+    const FloatLanes area_pdf = light_distance2 / ((4.0f * kPi * radius * radius) * area_cosine);
+    const IntLanes area_valid = (light_distance2 > 0.0f) & (area_cosine > 0.0f);
+
+    const Vec3Lanes toward = select(outside, cone_direction, area_direction);
+    const FloatLanes pdf = select(outside, cone_pdf, area_pdf);
+    const FloatLanes cosine = dot(toward, facing);
+    const Vec3Lanes reflected =
+        select(cosine > 0.0f, albedo * (kInvPi * cosine), Vec3Lanes::broadcast(Color(0.0f)));
+    const IntLanes arrives =
+        (outside | (~none & area_valid)) & (pdf > 0.0f) &
+        ((reflected.x != 0.0f) | (reflected.y != 0.0f) | (reflected.z != 0.0f));
+    const LaneMask sampled = lanes & lane_bits(arrives);
+    if (sampled == 0) return;
+    const FloatLanes light_pdf = probability * pdf;
+    const FloatLanes weight = C::light_sampling::light_weight(
+        light_pdf, diffuse_probability * C::diffuse_sampling::pdf(cosine));
+    const Vec3Lanes light = reflected * radiance * (weight / light_pdf);
+    state.emitter_light.set_lanes(
+        base, select(lanes_of_bits(sampled), light, Vec3Lanes::broadcast(Color(0.0f))));
+    const IntLanes heads_in = dot(toward, normal) < 0.0f;
+    for_each_lane(sampled, [&](int i) {
+      ++counters.rays;
+      queue_emitter_ray(
+          state, base + i,
+          leaving_ray(point.lane(i), toward.lane(i), hit.sphere[i], heads_in[i] != 0, kInfinity),
+          emitter_sphere[i]);
+    });
+  }
+
+#endif  // GLINT_AVX2
+
+  static Ray leaving_ray(const Vec3& point, const Vec3& direction, std::uint32_t sphere,
+                         bool heads_into_sphere, float t_max) {
+    Ray ray;
+    ray.origin = point;
+    ray.direction = direction;
+    ray.t_max = t_max;
+    ray.origin_sphere = sphere;
+    ray.heads_into_origin_sphere = heads_into_sphere;
+    return ray;
   }
 
   void queue_shadow_ray(ThreadState& state, int p, const Ray& ray, const Color& light) const {
@@ -321,7 +874,8 @@ class WavefrontExecution {
       const LaneMask blocked = scene_.occluded(state.shadow_rays[block], active);
       for_each_lane(active & ~blocked, [&](int lane) {
         const auto q = std::size_t(base + lane);
-        state.irradiance[state.shadow_owner[q]] += state.shadow_irradiance[q];
+        const auto owner = int(state.shadow_owner[q]);
+        state.irradiance.set(owner, state.irradiance.get(owner) + state.shadow_irradiance[q]);
       });
     }
     state.shadow_count = 0;
@@ -349,31 +903,65 @@ class WavefrontExecution {
   /// and retires the paths that ended, their radiance kept for add_finished; the paths that
   /// go on are moved down to fill the holes. Returns the number left.
   GLINT_STAGE static int gather_and_retire(ThreadState& state, int live) {
+#if defined(GLINT_AVX2)
+    for (int base = 0; base < live; base += RayBatch::kWidth)
+      gather_lanes(state, base);
+#else
+    for (int p = 0; p < live; ++p)
+      gather_path(state, p);
+#endif
     for (int p = live - 1; p >= 0; --p) {
       const auto u = std::size_t(p);
-      const std::uint8_t pending = state.pending[u];
-      Color& radiance = state.radiance[u];
-      if (pending & kDirectLight)
-        radiance +=
-            (state.shading_throughput[u] * state.albedo[u]) * (kInvPi * state.irradiance[u]);
-      if (pending & kEmitterRay)
-        radiance += state.shading_throughput[u] *
-                    ((pending & kEmitterVisible) ? state.emitter_light[u] : Color(0.0f));
       if (!state.ends[u]) continue;
       const auto slot = std::size_t(state.sample[u] % std::uint64_t(kWindow));
-      state.results[slot] = radiance;
+      state.results[slot] = state.radiance.get(p);
       state.result_ready[slot] = 1;
       if (p != --live) move_path(state, live, p);
     }
     return live;
   }
 
+  static void gather_path(ThreadState& state, int p) {
+    const std::uint8_t pending = state.pending[std::size_t(p)];
+    Color radiance = state.radiance.get(p);
+    if (pending & kDirectLight)
+      radiance += (state.shading_throughput.get(p) * state.albedo.get(p)) *
+                  (kInvPi * state.irradiance.get(p));
+    if (pending & kEmitterRay)
+      radiance += state.shading_throughput.get(p) *
+                  ((pending & kEmitterVisible) ? state.emitter_light.get(p) : Color(0.0f));
+    state.radiance.set(p, radiance);
+  }
+
+#if defined(GLINT_AVX2)
+  /// gather_path for paths base .. base+7 (those beyond the live ones are left as they are:
+  /// their pending flags are clear).
+  static void gather_lanes(ThreadState& state, int base) {
+    IntLanes pending{};
+    for (int i = 0; i < kLaneCount; ++i)
+      pending[i] = state.pending[std::size_t(base + i)];
+    if (lane_bits(pending != 0) == 0) return;
+    const Vec3Lanes zero = Vec3Lanes::broadcast(Color(0.0f));
+    const Vec3Lanes throughput = state.shading_throughput.lanes(base);
+    Vec3Lanes radiance = state.radiance.lanes(base);
+    radiance = select((pending & kDirectLight) != 0,
+                      radiance + (throughput * state.albedo.lanes(base)) *
+                                     (kInvPi * state.irradiance.lanes(base)),
+                      radiance);
+    radiance = select((pending & kEmitterRay) != 0,
+                      radiance + throughput * select((pending & kEmitterVisible) != 0,
+                                                     state.emitter_light.lanes(base), zero),
+                      radiance);
+    state.radiance.set_lanes(base, radiance);
+  }
+#endif
+
   /// Moves path `from` (still going on) to place `to`, whose path has ended.
   static void move_path(ThreadState& state, int from, int to) {
     const auto f = std::size_t(from), t = std::size_t(to);
     set_ray(state, to, ray_of(state, from));
-    state.throughput[t] = state.throughput[f];
-    state.radiance[t] = state.radiance[f];
+    state.throughput.set(to, state.throughput.get(from));
+    state.radiance.set(to, state.radiance.get(from));
     state.depth[t] = state.depth[f];
     state.sample[t] = state.sample[f];
     state.from[t] = state.from[f];
