@@ -3,17 +3,28 @@
 // fractions held in 32-bit integers (bit 31 is the first digit). Why the fast forms below equal
 // the definitions is shown in docs/notes/samplers.md.
 
+#include <concepts>
 #include <cstdint>
 
 #include "glint/math/lanes.hpp"
 
 namespace glint {
 
+/// A 32-bit word, or eight of them in SIMD lanes (UintLanes, with AVX2): the bit operations
+/// below are written once for both, so the samplers' lane-wise draws are their scalar ones.
+template <typename U>
+concept Words32 = std::same_as<U, std::uint32_t>
+#if defined(GLINT_AVX2)
+    || std::same_as<U, UintLanes>
+#endif
+    ;
+
 namespace detail {
 
 /// Bit reversal: turns a binary fraction's digits (most significant first) into an integer's
 /// (least significant first) and back.
-constexpr std::uint32_t reverse_bits(std::uint32_t v) {
+template <Words32 U>
+constexpr U reverse_bits(U v) {
   v = (v << 16) | (v >> 16);
   v = ((v & 0x00ff00ffu) << 8) | ((v >> 8) & 0x00ff00ffu);
   v = ((v & 0x0f0f0f0fu) << 4) | ((v >> 4) & 0x0f0f0f0fu);
@@ -21,15 +32,19 @@ constexpr std::uint32_t reverse_bits(std::uint32_t v) {
   v = ((v & 0x55555555u) << 1) | ((v >> 1) & 0x55555555u);
   return v;
 }
-#if defined(GLINT_AVX2)
-inline UintLanes reverse_bits(UintLanes v) {
-  v = (v << 16) | (v >> 16);
-  v = ((v & 0x00ff00ffu) << 8) | ((v >> 8) & 0x00ff00ffu);
-  v = ((v & 0x0f0f0f0fu) << 4) | ((v >> 4) & 0x0f0f0f0fu);
-  v = ((v & 0x33333333u) << 2) | ((v >> 2) & 0x33333333u);
-  return ((v & 0x55555555u) << 1) | ((v >> 1) & 0x55555555u);
+
+/// owen_scramble_reversed with its key's two halves.
+template <Words32 U>
+constexpr U owen_scramble_halves(U v, U a, U b) {
+  v += a;
+  v ^= v * 0x9e3779b8u;
+  v *= b | 1u;
+  v ^= v * 0x7feb352cu;
+  v += b;
+  v ^= v * 0x846ca68au;
+  v ^= v * ((a >> 7) << 1);
+  return v;
 }
-#endif
 
 }  // namespace detail
 
@@ -53,8 +68,9 @@ constexpr std::uint32_t sobol_first_dimension(std::uint32_t index) {
 /// The second dimension of Sobol's sequence, as a binary fraction, with the digits still in
 /// reversed (integer) order: a subset-sum transform, one masked shift-xor per bit of a digit
 /// position instead of a 32-step matrix product.
-constexpr std::uint32_t sobol_second_dimension_reversed(std::uint32_t index) {
-  std::uint32_t v = index;
+template <Words32 U>
+constexpr U sobol_second_dimension_reversed(U index) {
+  U v = index;
   v ^= (v >> 1) & 0x55555555u;
   v ^= (v >> 2) & 0x33333333u;
   v ^= (v >> 4) & 0x0f0f0f0fu;
@@ -62,16 +78,6 @@ constexpr std::uint32_t sobol_second_dimension_reversed(std::uint32_t index) {
   v ^= (v >> 16) & 0x0000ffffu;
   return v;
 }
-#if defined(GLINT_AVX2)
-inline UintLanes sobol_second_dimension_reversed(UintLanes v) {
-  v ^= (v >> 1) & 0x55555555u;
-  v ^= (v >> 2) & 0x33333333u;
-  v ^= (v >> 4) & 0x0f0f0f0fu;
-  v ^= (v >> 8) & 0x00ff00ffu;
-  v ^= (v >> 16) & 0x0000ffffu;
-  return v;
-}
-#endif
 
 constexpr std::uint32_t sobol_second_dimension(std::uint32_t index) {
   return detail::reverse_bits(sobol_second_dimension_reversed(index));
@@ -82,29 +88,12 @@ constexpr std::uint32_t sobol_second_dimension(std::uint32_t index) {
 /// less significant than it, which makes the whole an Owen scramble (preserving every
 /// (t, m, s)-net property). Returns the digits still reversed.
 constexpr std::uint32_t owen_scramble_reversed(std::uint32_t v, std::uint64_t key) {
-  const auto a = static_cast<std::uint32_t>(key);
-  const auto b = static_cast<std::uint32_t>(key >> 32);
-  v += a;
-  v ^= v * 0x9e3779b8u;
-  v *= b | 1u;
-  v ^= v * 0x7feb352cu;
-  v += b;
-  v ^= v * 0x846ca68au;
-  v ^= v * ((a >> 7) << 1);
-  return v;
+  return detail::owen_scramble_halves(v, static_cast<std::uint32_t>(key),
+                                      static_cast<std::uint32_t>(key >> 32));
 }
 #if defined(GLINT_AVX2)
 inline UintLanes owen_scramble_reversed(UintLanes v, const Uint64Lanes& key) {
-  const UintLanes a = key.low_bits();
-  const UintLanes b = key.high_bits();
-  v += a;
-  v ^= v * 0x9e3779b8u;
-  v *= b | 1u;
-  v ^= v * 0x7feb352cu;
-  v += b;
-  v ^= v * 0x846ca68au;
-  v ^= v * ((a >> 7) << 1);
-  return v;
+  return detail::owen_scramble_halves(v, key.low_bits(), key.high_bits());
 }
 #endif
 
