@@ -48,10 +48,8 @@
 // keeps the scalar renderer's code what it is alone: the sampler's draws, the lobe sampling
 // and the emitter sampling would otherwise have two callers in a program that holds both
 // renderers, GCC would leave them out of line, and the multiply-adds it fuses across those
-// calls would change the last bits of the scalar renderer's images. Not under AddressSanitizer:
-// there the tests check behaviour, not bits, and flattening every call into these stages, with
-// -g, more than doubles the compile time of each test that renders with them.
-#if defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+// calls would change the last bits of the scalar renderer's images.
+#if defined(__GNUC__) && !defined(__clang__)
 #define GLINT_FLATTEN [[gnu::flatten]]
 #else
 #define GLINT_FLATTEN
