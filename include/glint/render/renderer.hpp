@@ -274,14 +274,18 @@ class Renderer {
     std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
     std::vector<typename E::ThreadState> states = thread_states(execution, thread_count);
     {
-      std::vector<std::jthread> threads;
-      // Declared after the threads so that it runs before they are joined: threads started
-      // before one failed to start end without asking for work.
+      // Declared before the threads, so that it outlives them: each reads it until it ends.
       StartGate gate;
-      start_threads(threads, thread_count, [&](int t) {
-        if (gate.wait())
-          work(source, grid, execution, states[std::size_t(t)], sums, counters[std::size_t(t)]);
-      });
+      std::vector<std::jthread> threads;
+      try {
+        start_threads(threads, thread_count, [&](int t) {
+          if (gate.wait())
+            work(source, grid, execution, states[std::size_t(t)], sums, counters[std::size_t(t)]);
+        });
+      } catch (...) {
+        gate.close();  // the threads already started end, without asking for work, and join
+        throw;
+      }
       gate.open();
     }
     RenderStats stats;
@@ -369,11 +373,11 @@ class Renderer {
   }
 
   /// Holds render_tiles's threads back until all have started; closed (the threads end at
-  /// once) if it is destroyed unopened, when one could not be started.
+  /// once) when one could not be started.
   class StartGate {
    public:
-    ~StartGate() { settle(kClosed); }
     void open() { settle(kOpen); }
+    void close() { settle(kClosed); }
     /// Whether the threads may go on.
     bool wait() {
       state_.wait(kWaiting, std::memory_order_acquire);
