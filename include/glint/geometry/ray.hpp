@@ -25,16 +25,23 @@ struct Ray {
   Vec3 at(float t) const { return origin + t * direction; }
 };
 
-/// A ray leaving sphere `sphere` at `point`, whose outward normal there is `outward_normal`.
+/// A ray leaving sphere `sphere` at `point`, into the sphere if `heads_into_sphere`.
 inline Ray ray_leaving_sphere(const Vec3& point, const Vec3& direction, std::uint32_t sphere,
-                              const Vec3& outward_normal, float t_max = kInfinity) {
+                              bool heads_into_sphere, float t_max = kInfinity) {
   Ray ray;
   ray.origin = point;
   ray.direction = direction;
   ray.t_max = t_max;
   ray.origin_sphere = sphere;
-  ray.heads_into_origin_sphere = glm::dot(direction, outward_normal) < 0.0f;
+  ray.heads_into_origin_sphere = heads_into_sphere;
   return ray;
+}
+
+/// A ray leaving sphere `sphere` at `point`, whose outward normal there is `outward_normal`.
+inline Ray ray_leaving_sphere(const Vec3& point, const Vec3& direction, std::uint32_t sphere,
+                              const Vec3& outward_normal, float t_max = kInfinity) {
+  return ray_leaving_sphere(point, direction, sphere, glm::dot(direction, outward_normal) < 0.0f,
+                            t_max);
 }
 
 }  // namespace glint

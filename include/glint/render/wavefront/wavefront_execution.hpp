@@ -307,20 +307,25 @@ class WavefrontExecution {
   /// Path p starts sample state.sample[p].
   GLINT_FLATTEN void start_path(ThreadState& state, int p, const PieceLayout& piece) const {
     const auto u = std::size_t(p);
-    const std::uint64_t n = state.sample[u];
-    const int x = piece.x(n);
-    const int y = piece.y(n);
-    SamplerType& sampler = state.sampler[u];
-    sampler.start(PixelSample{std::uint32_t(x), std::uint32_t(y), piece.index(n),
-                              std::uint32_t(settings_.samples_per_pixel), settings_.seed});
-    Vec2 film(float(x) + 0.5f, float(y) + 0.5f);
+    Vec2 film = start_sample(state, u, piece);
     if constexpr (C::antialiasing::enabled)
-      film += C::antialiasing::offset(sampler.next_2d(), settings_.antialias_sigma);
+      film += C::antialiasing::offset(state.sampler[u].next_2d(), settings_.antialias_sigma);
     set_ray(state, p, camera_.ray_through(film));
     state.throughput.set(p, Color(1.0f));
     state.radiance.set(p, Color(0.0f));
-    state.depth[u] = 0;
-    state.from[u] = Origin{};
+  }
+
+  /// Path p's sampler starts on state.sample[p], at depth 0 from the camera; returns the centre
+  /// of the sample's pixel on the film.
+  Vec2 start_sample(ThreadState& state, std::size_t p, const PieceLayout& piece) const {
+    const std::uint64_t n = state.sample[p];
+    const int x = piece.x(n);
+    const int y = piece.y(n);
+    state.sampler[p].start(PixelSample{std::uint32_t(x), std::uint32_t(y), piece.index(n),
+                                       std::uint32_t(settings_.samples_per_pixel), settings_.seed});
+    state.depth[p] = 0;
+    state.from[p] = Origin{};
+    return Vec2(float(x) + 0.5f, float(y) + 0.5f);
   }
 
 #if defined(GLINT_AVX2)
@@ -330,17 +335,9 @@ class WavefrontExecution {
                                  const PieceLayout& piece) const {
     Vec2Lanes film{};
     for_each_lane(lanes, [&](int i) {
-      const auto p = std::size_t(base + i);
-      const std::uint64_t n = state.sample[p];
-      const int x = piece.x(n);
-      const int y = piece.y(n);
-      SamplerType& sampler = state.sampler[p];
-      sampler.start(PixelSample{std::uint32_t(x), std::uint32_t(y), piece.index(n),
-                                std::uint32_t(settings_.samples_per_pixel), settings_.seed});
-      film.x[i] = float(x) + 0.5f;
-      film.y[i] = float(y) + 0.5f;
-      state.depth[p] = 0;
-      state.from[p] = Origin{};
+      const Vec2 centre = start_sample(state, std::size_t(base + i), piece);
+      film.x[i] = centre.x;
+      film.y[i] = centre.y;
     });
     if constexpr (C::antialiasing::enabled) {
       const Vec2Lanes u = SamplerBlock(state.sampler, base, lanes).next_2d(lanes);
@@ -642,8 +639,8 @@ class WavefrontExecution {
         for_each_lane(lit, [&](int i) {
           ++counters.rays;
           queue_shadow_ray(state, base + i,
-                           leaving_ray(point.lane(i), toward.lane(i), hit.sphere[i],
-                                       heads_in[i] != 0, distance[i]),
+                           ray_leaving_sphere(point.lane(i), toward.lane(i), hit.sphere[i],
+                                              heads_in[i] != 0, distance[i]),
                            irradiance.lane(i));
         });
       }
@@ -829,25 +826,14 @@ class WavefrontExecution {
     const IntLanes heads_in = dot(toward, normal) < 0.0f;
     for_each_lane(sampled, [&](int i) {
       ++counters.rays;
-      queue_emitter_ray(
-          state, base + i,
-          leaving_ray(point.lane(i), toward.lane(i), hit.sphere[i], heads_in[i] != 0, kInfinity),
-          emitter_sphere[i]);
+      queue_emitter_ray(state, base + i,
+                        ray_leaving_sphere(point.lane(i), toward.lane(i), hit.sphere[i],
+                                           heads_in[i] != 0, kInfinity),
+                        emitter_sphere[i]);
     });
   }
 
 #endif  // GLINT_AVX2
-
-  static Ray leaving_ray(const Vec3& point, const Vec3& direction, std::uint32_t sphere,
-                         bool heads_into_sphere, float t_max) {
-    Ray ray;
-    ray.origin = point;
-    ray.direction = direction;
-    ray.t_max = t_max;
-    ray.origin_sphere = sphere;
-    ray.heads_into_origin_sphere = heads_into_sphere;
-    return ray;
-  }
 
   void queue_shadow_ray(ThreadState& state, int p, const Ray& ray, const Color& light) const {
     if (state.shadow_count == kShadowQueue) trace_shadow_rays(state);
