@@ -208,6 +208,9 @@ if(GLINT_BASH)
                      $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
                      ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli SKIP_RETURN_CODE 77)
+    if(GLINT_SANITIZE)
+      set_tests_properties("cli: ${name}" PROPERTIES ENVIRONMENT GLINT_LONG_RENDER_SIZE=160x120)
+    endif()
   endforeach()
 endif()
 

@@ -49,8 +49,14 @@ $2 $3
 # samples at a time, so the first 10% of the work holds several completed passes and the
 # render still has about 90% of its work ahead when it is interrupted there (some seconds on 2
 # threads of a Zen 5: a quarter of the pixels could end before the signal arrives).
-long_render=(--width 320 --height 240 --spp 1024 --max-depth 3 --threads 2 -o out.png
-             --hdr out.pfm)
+# GLINT_LONG_RENDER_SIZE=WxH changes the size: the sanitizers' build (CMake's GLINT_SANITIZE),
+# where glint-render is some 15 times slower, takes a quarter of the pixels.
+long_size=${GLINT_LONG_RENDER_SIZE:-320x240}
+[[ $long_size =~ ^([1-9][0-9]*)x([1-9][0-9]*)$ ]] ||
+  fail "GLINT_LONG_RENDER_SIZE is '$long_size', not WIDTHxHEIGHT"
+long_width=${BASH_REMATCH[1]} long_height=${BASH_REMATCH[2]}
+long_render=(--width "$long_width" --height "$long_height" --spp 1024 --max-depth 3 --threads 2
+             -o out.png --hdr out.pfm)
 
 # Starts a long render in the background (stderr is a file, so progress comes as a line per
 # tenth) and returns once a progress line shows at least 10% done.
@@ -84,10 +90,10 @@ interrupted_once() { # SIGNAL STATUS
   # count is the end of a pass: 1, 2, 4, ... 32, then multiples of 32.
   ((spp >= 96 && spp < 1024 && spp % 32 == 0 && passes == spp / 32 + 5)) ||
     fail "$spp samples per pixel in $passes passes is not a pass boundary past 10%"
-  grep -q "^glint-render (.*): .* -> out\.png: 320x240, $spp spp," err.log ||
+  grep -q "^glint-render (.*): .* -> out\.png: ${long_width}x${long_height}, $spp spp," err.log ||
     fail "the summary line does not give $spp spp"
   complete_png out.png
-  complete_pfm out.pfm 320 240
+  complete_pfm out.pfm "$long_width" "$long_height"
   no_temporaries
 }
 
@@ -131,7 +137,7 @@ case_sigint_quiet() {
     fail "no stop message"
   [[ $(wc -l <err.log) -eq 1 ]] || fail "--quiet printed more than the stop message"
   complete_png out.png
-  complete_pfm out.pfm 320 240
+  complete_pfm out.pfm "$long_width" "$long_height"
   no_temporaries
 }
 
@@ -317,10 +323,10 @@ case_time_limit_zero() {
   ((status == 0)) || fail "exit status $status, expected 0"
   [[ $(tail -n 1 err.log) == "glint-render: time limit of 0 s reached: out.png holds 1 of 1024 samples per pixel (1 of 37 passes)" ]] ||
     fail "last line on stderr is not the time limit message"
-  grep -q "^glint-render (.*): .* -> out\.png: 320x240, 1 spp," err.log ||
+  grep -q "^glint-render (.*): .* -> out\.png: ${long_width}x${long_height}, 1 spp," err.log ||
     fail "the summary line does not give 1 spp"
   complete_png out.png
-  complete_pfm out.pfm 320 240
+  complete_pfm out.pfm "$long_width" "$long_height"
   no_temporaries
 }
 

@@ -10,6 +10,7 @@
 #include "glint/image/pixel_sums.hpp"
 #include "glint/render/renderer.hpp"
 #include "glint/variants.hpp"
+#include "renderer_types.hpp"
 
 namespace {
 
@@ -44,7 +45,8 @@ TEST_CASE("a constant background is its own mean at any sample count", "[accumul
   for (const int spp : {1, 3, 1000, 1 << 20}) {
     INFO(spp << " samples per pixel");
     const glint::RenderResult result =
-        glint::Renderer<glint::variants::fast>::render(scene, settings_of(1, 1, spp));
+        glint_test::render_by<glint::Renderer<glint::variants::fast>>(scene,
+                                                                      settings_of(1, 1, spp));
     CHECK(result.film.at(0, 0) == background);
     CHECK(result.stats.invalid_samples == 0);
     CHECK(result.stats.clamped_pixels == 0);
@@ -56,7 +58,8 @@ TEST_CASE("large finite samples give a finite mean", "[accumulation]") {
   const glint::Color background(1e36f, 3e38f, 0.0f);
   const glint::Scene scene = background_scene(background);
   const glint::RenderResult result =
-      glint::Renderer<glint::variants::report>::render(scene, settings_of(3, 2, 1000));
+      glint_test::render_by<glint::Renderer<glint::variants::report>>(scene,
+                                                                      settings_of(3, 2, 1000));
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 3; ++x)
       CHECK(result.film.at(x, y) == background);
@@ -83,8 +86,9 @@ TEST_CASE("a mean beyond the float range is clamped and counted", "[accumulation
   glint::PixelSums sums(3, 2);
   sums.at(1, 1) = glint::ColorSum(1e300, 0.0, 0.0);
   sums.at(2, 0) = glint::ColorSum(0.0, 0.0, 1e40);
-  const glint::RenderResult result = glint::Renderer<glint::variants::report>::render(
-      scene, settings, glint::RenderControl{}, {&sums, 1});
+  const glint::RenderResult result =
+      glint_test::render_by<glint::Renderer<glint::variants::report>>(
+          scene, settings, glint::RenderControl{}, {&sums, 1});
   CHECK(result.stats.clamped_pixels == 2);
   for (const glint::Color& pixel : result.film.pixels())
     CHECK((std::isfinite(pixel.x) && std::isfinite(pixel.y) && std::isfinite(pixel.z)));

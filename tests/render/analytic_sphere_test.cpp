@@ -47,7 +47,7 @@ double mean_radiance(const glint::Scene& scene, int spp, int max_depth, double& 
   settings.max_depth = max_depth;
   settings.threads = 2;
   settings.seed = 7;
-  const glint::RenderResult result = R::render(scene, settings);
+  const glint::RenderResult result = glint_test::render_by<R>(scene, settings);
   REQUIRE(result.stats.invalid_samples == 0);
   double sum = 0.0, sum2 = 0.0;
   for (const glint::Color& c : result.film.pixels()) {

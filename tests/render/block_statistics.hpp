@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "glint/render/renderer.hpp"
+#include "renderer_types.hpp"
 
 namespace glint_test {
 
@@ -35,7 +36,7 @@ BlockStatistics render_blocks(const glint::Scene& scene, std::uint64_t first_see
   std::array<std::vector<double>, kBlocksPerSide * kBlocksPerSide> per_seed;
   for (int seed = 0; seed < kSeeds; ++seed) {
     settings.seed = std::uint64_t(seed) + first_seed;
-    const glint::RenderResult result = R::render(scene, settings);
+    const glint::RenderResult result = glint_test::render_by<R>(scene, settings);
     REQUIRE(result.stats.invalid_samples == 0);
     std::array<double, kBlocksPerSide * kBlocksPerSide> sums{};
     for (int y = 0; y < settings.height; ++y)

@@ -12,6 +12,7 @@
 
 #include "glint/render/renderer.hpp"
 #include "glint/variants.hpp"
+#include "renderer_types.hpp"
 
 using glint::Color;
 using glint::Vec3;
@@ -242,7 +243,8 @@ TEMPLATE_TEST_CASE("huge floors: a lit floor renders with the point-light formul
         s.seed = 3;
         s.threads = 1;
         const glint::Scene built = glint::Scene::build(scene);
-        const glint::RenderResult result = glint::Renderer<TestType>::render(built, s);
+        const glint::RenderResult result =
+            glint_test::render_by<glint::Renderer<TestType>>(built, s);
         CHECK(result.stats.invalid_samples == 0);
         for (const Color& c : result.film.pixels())
           CHECK(c.x == Approx(expected).epsilon(1e-3));
@@ -284,7 +286,8 @@ TEST_CASE("huge floors: geometry at the scene format's limits renders without ov
   s.max_depth = 2;
   s.threads = 1;
   const glint::RenderResult result =
-      glint::Renderer<glint::variants::report>::render(glint::Scene::build(scene), s);
+      glint_test::render_by<glint::Renderer<glint::variants::report>>(glint::Scene::build(scene),
+                                                                      s);
   CHECK(result.stats.invalid_samples == 0);
   // Near 9e10 floats are 8192 apart: the floor's top as the kernel stores it (its anchor, the
   // top rounded to float) is where the light's distance is measured from.

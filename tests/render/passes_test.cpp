@@ -21,6 +21,7 @@
 #include "glint/render/tile_grid.hpp"
 #include "glint/render/wavefront/wavefront_renderer.hpp"
 #include "glint/variants.hpp"
+#include "renderer_types.hpp"
 #include "small_scene.hpp"
 
 namespace {
@@ -70,7 +71,7 @@ glint::RenderResult stopped_after(const glint::Scene& scene, const glint::Render
                                   int passes) {
   glint::RenderControl control;
   control.pass_done = [&](const glint::PassReport& r) { return r.passes_done < passes; };
-  return glint::Renderer<V>::render(scene, settings, control);
+  return glint_test::render_by<glint::Renderer<V>>(scene, settings, control);
 }
 
 /// A fixed list of pieces, handed out in order; counts what finished.
@@ -149,7 +150,8 @@ TEMPLATE_TEST_CASE("all passes give the one-shot image bit for bit", "[passes]",
   INFO(threads << " threads, tiles of " << tile << ", at most " << max_pass << " a pass");
   const glint::RenderSettings settings = small_settings(13, max_pass, threads, tile);
 
-  const glint::RenderResult result = glint::Renderer<TestType>::render(scene, settings);
+  const glint::RenderResult result =
+      glint_test::render_by<glint::Renderer<TestType>>(scene, settings);
   CHECK(result.complete());
   CHECK(result.samples_per_pixel == 13);
   CHECK(result.passes_done == int(glint::pass_ends(13, max_pass).size()));
@@ -197,7 +199,8 @@ TEST_CASE("the pass callback sees each pass's image, the one a stop there return
     samples.push_back(r.samples_per_pixel);
     return true;
   };
-  const glint::RenderResult result = glint::Renderer<V>::render(scene, settings, control);
+  const glint::RenderResult result =
+      glint_test::render_by<glint::Renderer<V>>(scene, settings, control);
   CHECK(samples == ends);
   REQUIRE(images.size() == ends.size());
   CHECK(same_bits(images.back(), result.film));
@@ -215,8 +218,8 @@ TEST_CASE("a stop request ends the render after the current pass", "[passes]") {
 
   SECTION("requested before the render: nothing is rendered") {
     stop = true;
-    const glint::RenderResult result =
-        glint::Renderer<V>::render(scene, settings, glint::RenderControl{{}, {}, &stop});
+    const glint::RenderResult result = glint_test::render_by<glint::Renderer<V>>(
+        scene, settings, glint::RenderControl{{}, {}, &stop});
     CHECK(result.passes_done == 0);
     CHECK(result.samples_per_pixel == 0);
     CHECK(result.stats.samples == 0);
@@ -236,7 +239,8 @@ TEST_CASE("a stop request ends the render after the current pass", "[passes]") {
         stop = true;
       }
     };
-    const glint::RenderResult result = glint::Renderer<V>::render(scene, settings, control);
+    const glint::RenderResult result =
+        glint_test::render_by<glint::Renderer<V>>(scene, settings, control);
     REQUIRE(passes_at_request >= 2);
     CHECK(result.passes_done >= passes_at_request);
     CHECK(result.passes_done <= passes_at_request + 1);
@@ -255,7 +259,7 @@ TEST_CASE("a callback that throws ends the render and reaches the caller", "[pas
     return true;
   };
   // The workers waiting for pass 3 must be told to stop, or this would never return.
-  CHECK_THROWS_WITH(glint::Renderer<V>::render(scene, settings, control), "enough");
+  CHECK_THROWS_WITH(glint_test::render_by<glint::Renderer<V>>(scene, settings, control), "enough");
 }
 
 TEMPLATE_TEST_CASE("a render resumed after k passes ends bit for bit as an uninterrupted one",
@@ -264,7 +268,7 @@ TEMPLATE_TEST_CASE("a render resumed after k passes ends bit for bit as an unint
                    glint::WavefrontRenderer<glint::variants::fast>) {
   const glint::Scene scene = small_scene();
   const glint::RenderSettings base = small_settings(13, 4, 2, 8);  // passes end 1 2 4 8 12 13
-  const glint::Film full = TestType::render(scene, base).film;
+  const glint::Film full = glint_test::render_by<TestType>(scene, base).film;
   const int passes = GENERATE(1, 2, 3, 5, 6);
   INFO("resumed after pass " << passes);
 
@@ -275,7 +279,7 @@ TEMPLATE_TEST_CASE("a render resumed after k passes ends bit for bit as an unint
     sums = r.sums;
     return r.passes_done < passes;
   };
-  TestType::render(scene, base, first);
+  glint_test::render_by<TestType>(scene, base, first);
   REQUIRE(sums.width() == 19);
 
   for (const int threads : {1, 2, 5}) {
@@ -290,7 +294,8 @@ TEMPLATE_TEST_CASE("a render resumed after k passes ends bit for bit as an unint
     };
     std::uint64_t at_start = 0;
     control.progress = [&](const glint::RenderProgress& p) { at_start = p.samples_at_start; };
-    const glint::RenderResult result = TestType::render(scene, settings, control, {&sums, passes});
+    const glint::RenderResult result =
+        glint_test::render_by<TestType>(scene, settings, control, {&sums, passes});
     CHECK(result.complete());
     CHECK(result.passes_done == 6);
     CHECK(result.samples_per_pixel == 13);
@@ -313,11 +318,11 @@ TEST_CASE("a resumed render that is stopped again holds its passes' samples", "[
     sums = r.sums;
     return r.passes_done < 2;
   };
-  glint::Renderer<V>::render(scene, settings, first);
+  glint_test::render_by<glint::Renderer<V>>(scene, settings, first);
 
   std::atomic<bool> stop{true};
-  const glint::RenderResult none =
-      glint::Renderer<V>::render(scene, settings, glint::RenderControl{{}, {}, &stop}, {&sums, 2});
+  const glint::RenderResult none = glint_test::render_by<glint::Renderer<V>>(
+      scene, settings, glint::RenderControl{{}, {}, &stop}, {&sums, 2});
   CHECK(none.passes_done == 2);
   CHECK(none.samples_per_pixel == 2);
   CHECK(same_bits(none.film, one_shot<V>(scene, settings, 2)));
@@ -326,7 +331,7 @@ TEST_CASE("a resumed render that is stopped again holds its passes' samples", "[
   glint::RenderControl control;
   control.pass_done = [](const glint::PassReport& r) { return r.passes_done < 4; };
   const glint::RenderResult resumed =
-      glint::Renderer<V>::render(scene, settings, control, {&sums, 2});
+      glint_test::render_by<glint::Renderer<V>>(scene, settings, control, {&sums, 2});
   CHECK(resumed.passes_done == 4);
   CHECK(resumed.samples_per_pixel == 8);
   CHECK(same_bits(resumed.film, later.film));
@@ -338,14 +343,16 @@ TEST_CASE("a start that does not fit the settings is refused", "[passes][resume]
   const glint::RenderSettings settings = small_settings(13, 4, 2, 8);  // 6 passes
   const glint::PixelSums right(19, 13), wrong(13, 19);
   const auto refused = [&](const glint::RenderStart& from) {
-    CHECK_THROWS_AS(glint::Renderer<V>::render(scene, settings, glint::RenderControl{}, from),
-                    glint::SettingsError);
+    CHECK_THROWS_AS(
+        glint_test::render_by<glint::Renderer<V>>(scene, settings, glint::RenderControl{}, from),
+        glint::SettingsError);
   };
   refused({&wrong, 1});
   refused({nullptr, 2});
   refused({&right, 7});
   refused({&right, -1});
-  CHECK(glint::Renderer<V>::render(scene, settings, glint::RenderControl{}, {&right, 6})
+  CHECK(glint_test::render_by<glint::Renderer<V>>(scene, settings, glint::RenderControl{},
+                                                  {&right, 6})
             .samples_per_pixel == 13);
 }
 
@@ -372,7 +379,7 @@ TEMPLATE_TEST_CASE("render_tiles, tile by tile in any order over two sets of sum
                    glint::WavefrontRenderer<glint::variants::fast>) {
   const glint::Scene scene = small_scene();
   const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
-  const glint::RenderResult whole = TestType::render(scene, settings);
+  const glint::RenderResult whole = glint_test::render_by<TestType>(scene, settings);
   const glint::TileGrid grid(settings);
   const std::vector<int> ends = glint::pass_ends(13, 4);  // 1 2 4 8 12 13
 

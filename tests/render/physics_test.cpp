@@ -74,7 +74,7 @@ template <typename R>
 glint::Film render(const glint::SceneDescription& description, const glint::RenderSettings& s) {
   const glint::Scene scene = glint::Scene::build(description);
   INFO(glint_test::renderer_name<R>());
-  const glint::RenderResult result = R::render(scene, s);
+  const glint::RenderResult result = glint_test::render_by<R>(scene, s);
   CHECK(result.stats.invalid_samples == 0);
   return result.film;
 }
@@ -389,14 +389,14 @@ TEST_CASE("a shading kind the variant lacks is rejected when rendering", "[rende
   add_sphere(scene, Vec3(0.0f), 3.0f);
   scene.lights.push_back({{0.0f, 10.0f, 10.0f}, 10.0f, Color(1.0f), 1});
   const glint::Scene uniform = glint::Scene::build(scene);
-  CHECK_NOTHROW(glint::Renderer<UniformOnly>::render(uniform, settings(4, 4, 1, 1)));
+  CHECK_NOTHROW(glint_test::render_by<glint::Renderer<UniformOnly>>(uniform, settings(4, 4, 1, 1)));
 
   auto& octants = add_sphere(scene, {5.0f, 0.0f, 0.0f}, 1.0f);
   octants.shading = glint::ShadingKind::octants;
   octants.line = 12;
   const glint::Scene mixed = glint::Scene::build(scene);
   try {
-    (void)glint::Renderer<UniformOnly>::render(mixed, settings(4, 4, 1, 1));
+    (void)glint_test::render_by<glint::Renderer<UniformOnly>>(mixed, settings(4, 4, 1, 1));
     FAIL("rendered a scene with octant shading");
   } catch (const glint::SceneError& e) {
     CHECK(e.line() == 12);
@@ -405,5 +405,6 @@ TEST_CASE("a shading kind the variant lacks is rejected when rendering", "[rende
     CHECK(message.find("octants") != std::string::npos);
   }
   // The built-in shading renders it.
-  CHECK_NOTHROW(glint::Renderer<glint::variants::report>::render(mixed, settings(4, 4, 1, 1)));
+  CHECK_NOTHROW(
+      glint_test::render_by<glint::Renderer<glint::variants::report>>(mixed, settings(4, 4, 1, 1)));
 }

@@ -12,6 +12,7 @@
 
 #include "glint/render/renderer.hpp"
 #include "glint/variants.hpp"
+#include "renderer_types.hpp"
 #include "small_scene.hpp"
 
 namespace {
@@ -61,11 +62,12 @@ TEST_CASE("the progress callback counts samples on the calling thread", "[render
   const std::thread::id caller = std::this_thread::get_id();
   std::vector<glint::RenderProgress> calls;
   bool other_thread = false;
-  const glint::RenderResult result = glint::Renderer<glint::variants::report>::render(
-      scene, settings, [&](const glint::RenderProgress& p) {
-        other_thread = other_thread || std::this_thread::get_id() != caller;
-        calls.push_back(p);
-      });
+  const glint::RenderResult result =
+      glint_test::render_by<glint::Renderer<glint::variants::report>>(
+          scene, settings, [&](const glint::RenderProgress& p) {
+            other_thread = other_thread || std::this_thread::get_id() != caller;
+            calls.push_back(p);
+          });
 
   INFO(calls.size() << " calls");
   CHECK_FALSE(other_thread);
@@ -119,8 +121,8 @@ TEST_CASE("progress keeps coming while a sample takes long", "[render][progress]
   gate_open = false;
   int calls_while_stuck = 0;
   bool last_seen = false;
-  const glint::RenderResult result =
-      glint::Renderer<Gated>::render(scene, settings, [&](const glint::RenderProgress& p) {
+  const glint::RenderResult result = glint_test::render_by<glint::Renderer<Gated>>(
+      scene, settings, [&](const glint::RenderProgress& p) {
         if (!gate_open && (threads > 1 || p.samples_done == 0) && p.passes_done == 0 &&
             ++calls_while_stuck == 3) {
           gate_open = true;
@@ -142,10 +144,10 @@ TEST_CASE("the progress callback does not change the image", "[render][progress]
   settings.samples_per_pixel = 2;
   settings.threads = 2;
   int calls = 0;
-  const glint::RenderResult with = glint::Renderer<glint::variants::report>::render(
+  const glint::RenderResult with = glint_test::render_by<glint::Renderer<glint::variants::report>>(
       scene, settings, [&](const glint::RenderProgress&) { ++calls; });
   const glint::RenderResult without =
-      glint::Renderer<glint::variants::report>::render(scene, settings);
+      glint_test::render_by<glint::Renderer<glint::variants::report>>(scene, settings);
   CHECK(calls >= 2);
   CHECK(with.film.pixels() == without.film.pixels());
 }

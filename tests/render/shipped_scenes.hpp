@@ -30,6 +30,7 @@
 #include "glint/render/renderer.hpp"
 #include "glint/scene/scene.hpp"
 #include "glint/variants.hpp"
+#include "renderer_types.hpp"
 #include "scene_model.hpp"
 
 namespace glint::test {
@@ -96,7 +97,7 @@ inline Film render_with(const std::string& variant, const SceneDescription& desc
   const Scene scene = Scene::build(description);
   RenderResult result;
   const bool known = variants::visit_by_name(
-      variant, [&]<typename V>() { result = Renderer<V>::render(scene, settings); });
+      variant, [&]<typename V>() { result = glint_test::render_by<Renderer<V>>(scene, settings); });
   INFO("variant " << variant);
   REQUIRE(known);
   CHECK(result.stats.invalid_samples == 0);

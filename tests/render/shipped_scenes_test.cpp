@@ -28,8 +28,9 @@ TEST_CASE("every shipped scene renders with the variant it names", "[render][sce
     settings.max_depth = 3;
     settings.threads = 2;
     glint::RenderResult result;
-    const bool known = glint::variants::visit_by_name(
-        variant, [&]<typename V>() { result = glint::Renderer<V>::render(scene, settings); });
+    const bool known = glint::variants::visit_by_name(variant, [&]<typename V>() {
+      result = glint_test::render_by<glint::Renderer<V>>(scene, settings);
+    });
     if (!known) {
       FAIL_CHECK("unknown variant '" << variant << "'");
       continue;

@@ -18,6 +18,7 @@
 #include "glint/io/scene_reader.hpp"
 #include "glint/render/renderer.hpp"
 #include "glint/variants.hpp"
+#include "renderer_types.hpp"
 
 namespace {
 
@@ -99,9 +100,13 @@ sphere     center=0,0,0 radius=5 transparent=1 ior=1.5
                                                                         "fresnel"));
   glint::RenderSettings settings = glint::RenderSettings::from(scene);
   const float with =
-      glint::Renderer<glint::variants::report>::render(scene, settings).film.at(4, 4).x;
+      glint_test::render_by<glint::Renderer<glint::variants::report>>(scene, settings)
+          .film.at(4, 4)
+          .x;
   const float without =
-      glint::Renderer<glint::variants::no_fresnel>::render(scene, settings).film.at(4, 4).x;
+      glint_test::render_by<glint::Renderer<glint::variants::no_fresnel>>(scene, settings)
+          .film.at(4, 4)
+          .x;
   CHECK(without == 0.0f);
   CHECK(with > 0.02f);
   CHECK(with < 0.2f);

@@ -134,8 +134,10 @@ TEMPLATE_LIST_TEST_CASE("with the same seed, the wavefront follows the scalar re
   settings.height = 20;
   settings.seed = 5;
   settings.threads = 2;
-  const glint::RenderResult scalar = glint::Renderer<TestType>::render(scene, settings);
-  const glint::RenderResult wavefront = glint::WavefrontRenderer<TestType>::render(scene, settings);
+  const glint::RenderResult scalar =
+      glint_test::render_by<glint::Renderer<TestType>>(scene, settings);
+  const glint::RenderResult wavefront =
+      glint_test::render_by<glint::WavefrontRenderer<TestType>>(scene, settings);
   REQUIRE(wavefront.stats.samples == scalar.stats.samples);
   CHECK(wavefront.stats.invalid_samples == 0);
   CHECK(std::abs(double(wavefront.stats.rays) - double(scalar.stats.rays)) <=
@@ -165,17 +167,20 @@ TEST_CASE("the wavefront image depends neither on tiles nor on passes", "[render
   base.max_depth = 4;
   base.seed = 11;
   base.threads = 2;
-  const glint::Film reference = glint::WavefrontRenderer<V>::render(scene, base).film;
+  const glint::Film reference =
+      glint_test::render_by<glint::WavefrontRenderer<V>>(scene, base).film;
   glint::RenderSettings one_pixel_tiles = base;
   one_pixel_tiles.tile_size = 1;
   one_pixel_tiles.max_pass_samples = 1500;
-  CHECK(same_bits(glint::WavefrontRenderer<V>::render(scene, one_pixel_tiles).film, reference));
+  CHECK(same_bits(glint_test::render_by<glint::WavefrontRenderer<V>>(scene, one_pixel_tiles).film,
+                  reference));
   glint::RenderSettings ragged = base;
   ragged.tile_size = 3;
   ragged.max_pass_samples = 1;
   ragged.samples_per_pixel = 1500;
   ragged.threads = 3;
-  CHECK(same_bits(glint::WavefrontRenderer<V>::render(scene, ragged).film, reference));
+  CHECK(
+      same_bits(glint_test::render_by<glint::WavefrontRenderer<V>>(scene, ragged).film, reference));
 }
 
 TEST_CASE("the wavefront counts and drops samples that are not finite as the scalar renderer does",
@@ -191,8 +196,9 @@ sphere     center=0,0,0 radius=8 diffuse=0 mirror=1 emission=3e38,3e38,3e38
                                                                         "overflow"));
   using V = glint::variants::fast;
   const glint::RenderSettings settings = glint::RenderSettings::from(scene);
-  const glint::RenderResult scalar = glint::Renderer<V>::render(scene, settings);
-  const glint::RenderResult wavefront = glint::WavefrontRenderer<V>::render(scene, settings);
+  const glint::RenderResult scalar = glint_test::render_by<glint::Renderer<V>>(scene, settings);
+  const glint::RenderResult wavefront =
+      glint_test::render_by<glint::WavefrontRenderer<V>>(scene, settings);
   CHECK(scalar.stats.invalid_samples > 0);
   CHECK(scalar.stats.invalid_samples < scalar.stats.samples);
   CHECK(wavefront.stats.invalid_samples == scalar.stats.invalid_samples);

@@ -9,6 +9,7 @@
 #include "glint/io/scene_reader.hpp"
 #include "glint/render/renderer.hpp"
 #include "glint/variants.hpp"
+#include "renderer_types.hpp"
 
 namespace {
 
@@ -57,7 +58,7 @@ TEST_CASE("work estimate: the tree model refuses an exponential scene, one-lobe 
   const glint::RenderSettings settings = glint::RenderSettings::from(scene);
   // 2 (2^21 - 1) rays per sample: over the limit of 2^20.
   try {
-    (void)glint::Renderer<glint::variants::report>::render(scene, settings);
+    (void)glint_test::render_by<glint::Renderer<glint::variants::report>>(scene, settings);
     FAIL("the report's model rendered a scene beyond the work limit");
   } catch (const glint::SettingsError& error) {
     const std::string message = error.what();
@@ -66,8 +67,9 @@ TEST_CASE("work estimate: the tree model refuses an exponential scene, one-lobe 
     // 2 (2^(D+1) - 1) <= 2^20 holds up to D = 18.
     CHECK_THAT(message, Catch::Contains("Lower max_depth to 18"));
   }
-  CHECK_NOTHROW(glint::Renderer<glint::variants::fast>::render(scene, settings));
-  CHECK_NOTHROW(glint::Renderer<glint::variants::stochastic_material>::render(scene, settings));
+  CHECK_NOTHROW(glint_test::render_by<glint::Renderer<glint::variants::fast>>(scene, settings));
+  CHECK_NOTHROW(glint_test::render_by<glint::Renderer<glint::variants::stochastic_material>>(
+      scene, settings));
   // The depth the message offers is the deepest within the limit.
   CHECK(glint::estimate_tree_work(scene, 18, 1).rays_per_sample <=
         glint::limits::max_tree_rays_per_sample);
