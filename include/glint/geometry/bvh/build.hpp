@@ -12,7 +12,10 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
+#include <iterator>
 #include <limits>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -142,7 +145,7 @@ class Builder {
     // uneven ones even out.
     const std::size_t subtree_size = std::max<std::size_t>(spheres_.size() / (8 * cores), 4096);
     std::vector<Piece> pieces;
-    plan(0, spheres_.size(), 0, root, subtree_size, pieces);
+    plan(0, spheres_.size(), 0, root, subtree_size, cores, pieces);
     std::vector<Piece*> subtrees;
     for (Piece& piece : pieces)
       if (piece.kind == Piece::Kind::subtree) subtrees.push_back(&piece);
@@ -176,7 +179,8 @@ class Builder {
 
   /// The one place where a node is decided, given the bounds of its range; reorders the range's
   /// spheres for a split.
-  Decision decide(std::size_t begin, std::size_t end, int depth, const RangeBounds& bounds) {
+  Decision decide(std::size_t begin, std::size_t end, int depth, const RangeBounds& bounds,
+                  std::size_t cores = 1) {
     const std::size_t count = end - begin;
     if (count <= kMaxLeafSize || depth >= kMaxDepth) return {true, end, {}, {}};
     const Vec3 extent = bounds.centroids.upper - bounds.centroids.lower;
@@ -184,7 +188,7 @@ class Builder {
         extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     if (extent[axis] > 0.0f) {
       const Binning binning(bounds.centroids, axis);
-      const Split split = best_split(binning, begin, end);
+      const Split split = best_split(binning, begin, end, cores);
       if (leaf_is_cheaper(split, bounds.box, count)) return {true, end, {}, {}};
       const std::size_t middle = partition(binning, split, begin, end);
       if (middle != begin && middle != end) return {false, middle, split.left, split.right};
@@ -211,20 +215,54 @@ class Builder {
     BinaryTree tree;  ///< subtree, once built
   };
 
+  /// Splits [begin, end) in the serial build's order down to ranges of at most subtree_size
+  /// spheres, appending the pieces to `pieces`. On several cores, the two halves of a range are
+  /// planned at once (their spheres are disjoint), the second into its own list, appended
+  /// after the first's: the same pieces in the same order.
   void plan(std::size_t begin, std::size_t end, int depth, const RangeBounds& bounds,
-            std::size_t subtree_size, std::vector<Piece>& pieces) {
+            std::size_t subtree_size, std::size_t cores, std::vector<Piece>& pieces) {
     if (end - begin <= subtree_size) {
       pieces.push_back({Piece::Kind::subtree, begin, end, depth, bounds, {}});
       return;
     }
-    const Decision decision = decide(begin, end, depth, bounds);
+    const Decision decision = decide(begin, end, depth, bounds, cores);
     if (decision.leaf) {
       pieces.push_back({Piece::Kind::leaf, begin, end, depth, bounds, {}});
       return;
     }
     pieces.push_back({Piece::Kind::inner, begin, end, depth, bounds, {}});
-    plan(begin, decision.middle, depth + 1, decision.left, subtree_size, pieces);
-    plan(decision.middle, end, depth + 1, decision.right, subtree_size, pieces);
+    const auto plan_left = [&](std::size_t left_cores) {
+      plan(begin, decision.middle, depth + 1, decision.left, subtree_size, left_cores, pieces);
+    };
+    const auto plan_right = [&](std::size_t right_cores, std::vector<Piece>& into) {
+      plan(decision.middle, end, depth + 1, decision.right, subtree_size, right_cores, into);
+    };
+    if (cores == 1) {
+      plan_left(1);
+      plan_right(1, pieces);
+      return;
+    }
+    std::vector<Piece> right;
+    std::exception_ptr right_failure;
+    {
+      std::jthread helper;  // declared after what it uses: joined before they go
+      try {
+        helper = std::jthread([&] {
+          try {
+            plan_right(cores / 2, right);
+          } catch (...) {
+            right_failure = std::current_exception();
+          }
+        });
+      } catch (const std::system_error&) {
+        // No thread: this one plans both halves.
+      }
+      plan_left(cores - cores / 2);
+      if (!helper.joinable()) plan_right(cores / 2, right);
+    }
+    if (right_failure) std::rethrow_exception(right_failure);
+    pieces.insert(pieces.end(), std::make_move_iterator(right.begin()),
+                  std::make_move_iterator(right.end()));
   }
 
   /// Appends the nodes of the piece at `next` and of its descendants, as build_node would have;
@@ -262,18 +300,58 @@ class Builder {
     return bounds;
   }
 
-  /// Sweeps the bins from both ends for the plane of least SAH cost.
-  Split best_split(const Binning& binning, std::size_t begin, std::size_t end) const {
-    constexpr int kBins = Binning::kBins;
-    std::array<RangeBounds, kBins> bins{};
-    std::array<std::size_t, kBins> bin_counts{};
+  static constexpr int kBins = Binning::kBins;
+
+  /// The bounds and sphere counts of the bins.
+  struct Bins {
+    std::array<RangeBounds, kBins> bounds{};
+    std::array<std::size_t, kBins> counts{};
+
+    void add(const Bins& other) {
+      for (int b = 0; b < kBins; ++b) {
+        bounds[b].grow(other.bounds[b]);
+        counts[b] += other.counts[b];
+      }
+    }
+  };
+
+  Bins bin(const Binning& binning, std::size_t begin, std::size_t end) const {
+    Bins bins;
     for (std::size_t i = begin; i < end; ++i) {
       const SphereInput& s = spheres_[i];
       const int b = binning.bin_of(s);
-      bins[b].box.grow(bounds_of(s));
-      bins[b].centroids.grow(s.center);
-      ++bin_counts[b];
+      bins.bounds[b].box.grow(bounds_of(s));
+      bins.bounds[b].centroids.grow(s.center);
+      ++bins.counts[b];
     }
+    return bins;
+  }
+
+  /// bin() over the range, in chunks on up to `cores` cores for the large ranges at the top of
+  /// a parallel build (which are split before the subtrees can be built in parallel). Unions
+  /// and sums: the same bins however the range is cut.
+  Bins bin_range(const Binning& binning, std::size_t begin, std::size_t end,
+                 std::size_t cores) const {
+    constexpr std::size_t kChunk = std::size_t{1} << 14;
+    if (cores == 1 || end - begin < kParallelBuildSize) return bin(binning, begin, end);
+    std::vector<Bins> chunks((end - begin + kChunk - 1) / kChunk);
+    glint::detail::parallel_chunks(
+        chunks.size(), 1, cores, [&](std::size_t first, std::size_t last) {
+          for (std::size_t c = first; c < last; ++c)
+            chunks[c] = bin(binning, begin + c * kChunk, std::min(end, begin + (c + 1) * kChunk));
+        });
+    Bins bins;
+    for (const Bins& chunk : chunks)
+      bins.add(chunk);
+    return bins;
+  }
+
+  /// Sweeps the bins from both ends for the plane of least SAH cost.
+  Split best_split(const Binning& binning, std::size_t begin, std::size_t end,
+                   std::size_t cores) const {
+    const Bins binned = bin_range(binning, begin, end, cores);
+    const std::array<RangeBounds, kBins>& bins = binned.bounds;
+    const std::array<std::size_t, kBins>& bin_counts = binned.counts;
     // left[b]: the bounds of bins 0 .. b.
     std::array<RangeBounds, kBins - 1> left{};
     std::array<float, kBins - 1> left_cost{};
