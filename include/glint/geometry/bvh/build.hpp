@@ -4,9 +4,10 @@
 // and the spheres of each leaf stored contiguously.
 //
 // Large trees are built on every core, into the same nodes as one core would make: the top
-// levels are split on the calling thread until the ranges are small, those subtrees are built
-// in parallel (disjoint ranges of the spheres, each into its own nodes), and the nodes are then
-// laid out in the serial order, the subtrees spliced in with their offsets moved.
+// levels are split until the ranges are small (the two halves of a range at once, each large
+// range binned in chunks on its cores), those subtrees are built in parallel (disjoint ranges of
+// the spheres, each into its own nodes), and the nodes are then laid out in the serial order,
+// the subtrees spliced in with their offsets moved.
 
 #include <algorithm>
 #include <array>
