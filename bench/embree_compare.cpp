@@ -1,6 +1,8 @@
 // glint's sphere accelerators against Embree 3 on the same spheres and the same rays.
 //
-//   glint-embree-compare [--quick] [--markdown FILE]
+//   glint-embree-compare [--quick] [--only NAME] [--markdown FILE]
+//
+// --only NAME keeps the scenes whose name starts with NAME ("packing", "random 10^6").
 //
 // Scenes: glint's random scenes of 10^3 to 10^6 spheres (the generator's six walls of radius
 // 1e5 included, the density of the README's million-sphere scene), and a dense packing (a cubic
@@ -298,15 +300,18 @@ const char* kHeader =
 
 int main(int argc, char** argv) {
   bool quick = false;
-  std::string markdown;
+  std::string markdown, only;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--quick") {
       quick = true;
     } else if (arg == "--markdown" && i + 1 < argc) {
       markdown = argv[++i];
+    } else if (arg == "--only" && i + 1 < argc) {
+      only = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: glint-embree-compare [--quick] [--markdown FILE]\n");
+      std::fprintf(stderr,
+                   "usage: glint-embree-compare [--quick] [--only NAME] [--markdown FILE]\n");
       return 2;
     }
   }
@@ -319,6 +324,12 @@ int main(int argc, char** argv) {
        quick ? std::vector<int>{1000, 10000} : std::vector<int>{1000, 10000, 100000, 1000000})
     scenes.push_back(random_scene(count));
   scenes.push_back(packed_scene(quick ? 16 : 64));
+  std::erase_if(scenes, [&](const TestScene& s) { return !s.name.starts_with(only); });
+  if (scenes.empty()) {
+    std::fprintf(stderr, "glint-embree-compare: no scene's name starts with \"%s\"\n",
+                 only.c_str());
+    return 2;
+  }
 
   std::vector<Row> rows;
   std::puts(kHeader);

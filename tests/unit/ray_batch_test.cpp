@@ -345,10 +345,41 @@ TEST_CASE("closest_hits: ties between duplicates go to the lowest id in every la
   }
 }
 
+namespace {
+
+/// A batched SphereBvh query under test: closest hits into `hits`, and the blocked lanes.
+struct BatchedBvhQuery {
+  const char* name;
+  LaneMask (*closest)(const glint::SphereBvh&, const RayBatch&, LaneMask,
+                      glint::SphereHit (&)[kWidth]);
+  LaneMask (*any)(const glint::SphereBvh&, const RayBatch&, LaneMask);
+};
+
+const BatchedBvhQuery kBatchedBvhQueries[] = {
+    {"interleaved",
+     [](const glint::SphereBvh& bvh, const RayBatch& rays, LaneMask active,
+        glint::SphereHit (&hits)[kWidth]) {
+       return bvh.closest_hits_interleaved(rays, active, hits);
+     },
+     [](const glint::SphereBvh& bvh, const RayBatch& rays, LaneMask active) {
+       return bvh.any_hits_interleaved(rays, active);
+     }},
 #ifdef GLINT_AVX2
-TEST_CASE("SphereBvh: the packet traversal answers as one traversal per lane",
+    {"packet",
+     [](const glint::SphereBvh& bvh, const RayBatch& rays, LaneMask active,
+        glint::SphereHit (&hits)[kWidth]) { return bvh.closest_hits_packet(rays, active, hits); },
+     [](const glint::SphereBvh& bvh, const RayBatch& rays, LaneMask active) {
+       return bvh.any_hits_packet(rays, active);
+     }},
+#endif
+};
+
+}  // namespace
+
+TEST_CASE("SphereBvh: the packet and interleaved traversals answer as one traversal per lane",
           "[geometry][ray_batch]") {
-  // Directly, whatever same_octant would choose: incoherent batches included.
+  // Directly, whatever closest_hits would choose: coherent and incoherent batches, some lanes
+  // inactive, some with a hit to beat.
   glint::Pcg32 rng(17, 1);
   std::vector<glint::SphereBvh::Input> inputs;
   std::vector<glint::SphereDescription> spheres;
@@ -366,39 +397,46 @@ TEST_CASE("SphereBvh: the packet traversal answers as one traversal per lane",
     }
   }
   const glint::SphereBvh bvh(inputs);
-  int hits = 0, lanes = 0;
-  for (int b = 0; b < 3000; ++b) {
-    Ray rays[kWidth];
-    if (b % 2 == 0)
-      coherent_rays(rng, 60.0f, rays);
-    else
-      for (Ray& ray : rays)
-        ray = random_ray(rng, spheres, 60.0f);
-    const LaneMask active = b % 3 == 0 ? RayBatch::kAllLanes : rng.next_u32() & RayBatch::kAllLanes;
-    RayBatch batch;
-    batch.heads_into_origin_sphere = 0;
-    for (int lane = 0; lane < kWidth; ++lane)
-      batch.set(lane, rays[lane]);
-    glint::SphereHit packet[kWidth], single[kWidth];
-    for (int lane = 0; lane < kWidth; ++lane) {
-      // Some lanes start from an earlier hit to beat.
-      if (lane % 3 == 1) packet[lane] = single[lane] = {uniform(rng, 1.0f, 80.0f), 7};
-    }
-    const LaneMask packet_found = bvh.closest_hits_packet(batch, active, packet);
-    const LaneMask single_found = bvh.closest_hits_per_lane(batch, active, single);
-    CHECK(packet_found == single_found);
-    CHECK(bvh.any_hits_packet(batch, active) == bvh.any_hits_per_lane(batch, active));
-    for (int lane = 0; lane < kWidth; ++lane) {
-      INFO("batch " << b << " lane " << lane);
-      CHECK(bits_of(packet[lane].t) == bits_of(single[lane].t));
-      CHECK(packet[lane].sphere == single[lane].sphere);
-      lanes += (active >> lane) & 1u;
-      hits += (single_found >> lane) & 1u;
+  for (const BatchedBvhQuery& query : kBatchedBvhQueries) {
+    DYNAMIC_SECTION(query.name) {
+      int hits = 0, blocked = 0, lanes = 0;
+      for (int b = 0; b < 3000; ++b) {
+        Ray rays[kWidth];
+        if (b % 2 == 0)
+          coherent_rays(rng, 60.0f, rays);
+        else
+          for (Ray& ray : rays)
+            ray = random_ray(rng, spheres, 60.0f);
+        const LaneMask active =
+            b % 3 == 0 ? RayBatch::kAllLanes : rng.next_u32() & RayBatch::kAllLanes;
+        RayBatch batch;
+        batch.heads_into_origin_sphere = 0;
+        for (int lane = 0; lane < kWidth; ++lane)
+          batch.set(lane, rays[lane]);
+        glint::SphereHit batched[kWidth], single[kWidth];
+        for (int lane = 0; lane < kWidth; ++lane) {
+          // Some lanes start from an earlier hit to beat.
+          if (lane % 3 == 1) batched[lane] = single[lane] = {uniform(rng, 1.0f, 80.0f), 7};
+        }
+        const LaneMask batched_found = query.closest(bvh, batch, active, batched);
+        const LaneMask single_found = bvh.closest_hits_per_lane(batch, active, single);
+        CHECK(batched_found == single_found);
+        const LaneMask single_blocked = bvh.any_hits_per_lane(batch, active);
+        CHECK(query.any(bvh, batch, active) == single_blocked);
+        for (int lane = 0; lane < kWidth; ++lane) {
+          INFO("batch " << b << " lane " << lane);
+          CHECK(bits_of(batched[lane].t) == bits_of(single[lane].t));
+          CHECK(batched[lane].sphere == single[lane].sphere);
+          lanes += (active >> lane) & 1u;
+          hits += (single_found >> lane) & 1u;
+          blocked += (single_blocked >> lane) & 1u;
+        }
+      }
+      CHECK(hits > lanes / 8);
+      CHECK(blocked > lanes / 8);
     }
   }
-  CHECK(hits > lanes / 8);
 }
-#endif
 
 TEST_CASE("same_octant", "[geometry][ray_batch]") {
   RayBatch batch;

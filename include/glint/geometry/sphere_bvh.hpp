@@ -15,6 +15,7 @@
 
 #include "glint/geometry/accelerator.hpp"
 #include "glint/geometry/bvh/build.hpp"
+#include "glint/geometry/bvh/interleaved.hpp"
 #include "glint/geometry/bvh/leaf_groups.hpp"
 #include "glint/geometry/bvh/packet.hpp"
 #include "glint/geometry/bvh/traverse.hpp"
@@ -35,7 +36,20 @@ class SphereBvh {
   explicit SphereBvh(std::vector<Input> spheres, std::size_t cores = 0)
       : tree_(bvh::build_binary_tree(spheres, cores)),
         wide_(bvh::collapse_to_wide(tree_.nodes)),
-        leaves_(bvh::group_leaves(wide_, tree_.spheres)) {}
+        leaves_(bvh::group_leaves(wide_, tree_.spheres)),
+        interleave_(traversal_bytes() > kInterleavedTraversalBytes) {}
+
+  /// The memory that ray traversal reads: the wide nodes and the leaves' sphere groups.
+  std::size_t traversal_bytes() const {
+    return wide_.size() * sizeof(bvh::WideNode) + leaves_.size() * sizeof(SphereGroup);
+  }
+
+  /// From this size of traversal_bytes() on, closest_hits and any_hits interleave the
+  /// traversals of incoherent batches (bvh/interleaved.hpp), which pays when their nodes come
+  /// from beyond the core's own caches. On 2-vCPU AMD EPYC Zen 5 (1 MiB L2; eight-ray batches
+  /// of random rays, glint-embree-compare and a lattice of spheres of 0.1 to 6.4 MB) it is
+  /// 0.86-0.93x one traversal per lane at 0.4-0.8 MB, 1.2x at 4 MB, 1.4-1.8x at 2.5-38 MB.
+  static constexpr std::size_t kInterleavedTraversalBytes = std::size_t(1) << 20;
 
   std::size_t size() const { return tree_.spheres.size(); }
   bool empty() const { return tree_.spheres.empty(); }
@@ -58,7 +72,8 @@ class SphereBvh {
 
   /// closest_hit for each ray of `active`, hits[lane] playing `hit`; returns the lanes for
   /// which it found a hit. Exactly closest_hit's answer lane by lane: a packet traversal for
-  /// batches whose rays share an octant (same_octant), else one traversal per lane. On 2-vCPU
+  /// batches whose rays share an octant (same_octant), else one traversal per lane, interleaved
+  /// in a tree larger than kInterleavedTraversalBytes. On 2-vCPU
   /// AMD EPYC Zen 5 (glint-features-bench BM_BvhBatch, 10^4 and 10^5 spheres) the packet is
   /// 1.9-2.3x as fast as eight traversals for 4x2 blocks of camera rays (2.5-2.7x for
   /// occlusion), but 0.56-0.57x for random rays (0.9-1.04x): random batches of eight almost
@@ -68,6 +83,7 @@ class SphereBvh {
 #ifdef GLINT_AVX2
     if (same_octant(rays, active)) return closest_hits_packet(rays, active, hits);
 #endif
+    if (interleave_) return closest_hits_interleaved(rays, active, hits);
     return closest_hits_per_lane(rays, active, hits);
   }
 
@@ -76,6 +92,7 @@ class SphereBvh {
 #ifdef GLINT_AVX2
     if (same_octant(rays, active)) return any_hits_packet(rays, active);
 #endif
+    if (interleave_) return any_hits_interleaved(rays, active);
     return any_hits_per_lane(rays, active);
   }
 
@@ -94,6 +111,30 @@ class SphereBvh {
       if (any_hit(rays.get(lane))) blocked |= LaneMask(1) << lane;
     });
     return blocked;
+  }
+
+  /// closest_hits and any_hits with the lanes' single-ray traversals interleaved
+  /// (bvh/interleaved.hpp).
+  LaneMask closest_hits_interleaved(const RayBatch& rays, LaneMask active,
+                                    SphereHit (&hits)[RayBatch::kWidth]) const {
+    Ray lane_rays[RayBatch::kWidth];
+    SphereHit best[RayBatch::kWidth];
+    for_each_lane(active, [&](int lane) {
+      lane_rays[lane] = rays.get(lane);
+      best[lane] = hit_to_beat(lane_rays[lane], hits[lane]);
+    });
+    const LaneMask found = traverse_interleaved<false>(lane_rays, active, best);
+    for_each_lane(found, [&](int lane) { hits[lane] = best[lane]; });
+    return found;
+  }
+  LaneMask any_hits_interleaved(const RayBatch& rays, LaneMask active) const {
+    Ray lane_rays[RayBatch::kWidth];
+    SphereHit best[RayBatch::kWidth];
+    for_each_lane(active, [&](int lane) {
+      lane_rays[lane] = rays.get(lane);
+      best[lane] = hit_to_beat(lane_rays[lane], SphereHit{});
+    });
+    return traverse_interleaved<true>(lane_rays, active, best);
   }
 
 #ifdef GLINT_AVX2
@@ -164,6 +205,24 @@ class SphereBvh {
         });
   }
 
+  template <bool kAnyHit>
+  LaneMask traverse_interleaved(const Ray (&lane_rays)[RayBatch::kWidth], LaneMask active,
+                                SphereHit (&best)[RayBatch::kWidth]) const {
+    const SphereGroup* groups = leaves_.data();
+    return bvh::traverse_interleaved<kAnyHit>(
+        wide_, lane_rays, active, best,
+        [&](int lane, std::uint32_t first, std::uint32_t count, SphereHit& leaf_best) {
+          const GroupRay lanes(lane_rays[lane]);
+          return test_grouped_spheres(lane_rays[lane], lanes, groups, first, count, leaf_best,
+                                      kAnyHit);
+        },
+        [&](std::uint32_t first, std::uint32_t count) {
+          const std::uint32_t group_count = (count + SphereGroup::kSize - 1) / SphereGroup::kSize;
+          bvh::prefetch_bytes(groups + first / SphereGroup::kSize,
+                              group_count * sizeof(SphereGroup));
+        });
+  }
+
 #ifdef GLINT_AVX2
   template <bool kAnyHit>
   LaneMask traverse_packet(const RayBatch& rays, LaneMask active,
@@ -181,6 +240,7 @@ class SphereBvh {
   bvh::BinaryTree tree_;             // building and box queries
   std::vector<bvh::WideNode> wide_;  // ray traversal
   std::vector<SphereGroup> leaves_;  // the wide tree's leaves (bvh/leaf_groups.hpp)
+  bool interleave_ = false;          // see kInterleavedTraversalBytes
 };
 
 static_assert(SphereAccelerator<SphereBvh>);

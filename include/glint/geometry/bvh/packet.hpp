@@ -17,13 +17,13 @@
 // to use per batch (SphereBvh::closest_hits).
 
 #include <array>
-#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "glint/geometry/accelerator.hpp"
 #include "glint/geometry/bvh/build.hpp"
+#include "glint/geometry/bvh/traverse.hpp"
 #include "glint/geometry/bvh/wide.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_batch.hpp"
@@ -38,14 +38,6 @@ inline __m256i lane_vector(LaneMask mask) {
   return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(static_cast<int>(mask)), bits),
                             bits);
 }
-
-/// Tests spheres [first, first + count) of the tree's leaf spheres against the ray of `lane`,
-/// updating `best` (see test_spheres); returns whether it did.
-template <class F>
-concept LaneLeafTest = requires(F& test_leaf, int lane, std::uint32_t first, std::uint32_t count,
-                                SphereHit& best) {
-  { test_leaf(lane, first, count, best) } -> std::same_as<bool>;
-};
 
 /// Traverses `nodes` for the lanes of `active`, each starting from the hit in `best` it has to
 /// beat (see hit_to_beat; best[lane].t <= the ray's t_max) and calling `test_leaf` for the

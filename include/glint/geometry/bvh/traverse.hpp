@@ -27,6 +27,13 @@ concept LeafTest = requires(F& test_leaf, std::uint32_t first, std::uint32_t cou
   { test_leaf(first, count, best) } -> std::same_as<bool>;
 };
 
+/// LeafTest for the ray of lane `lane` of a batch.
+template <class F>
+concept LaneLeafTest = requires(F& test_leaf, int lane, std::uint32_t first, std::uint32_t count,
+                                SphereHit& best) {
+  { test_leaf(lane, first, count, best) } -> std::same_as<bool>;
+};
+
 /// The slots of a wide node that a ray enters (bit c for slot c), split by kind.
 struct EnteredSlots {
   unsigned leaves = 0;

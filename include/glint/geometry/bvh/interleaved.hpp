@@ -1,0 +1,169 @@
+#pragma once
+// Interleaved traversal of the wide tree: the single-ray traversal of traverse.hpp for each of
+// up to eight rays, taken one node at a time in turn, so that the memory loads of the rays
+// overlap. Incoherent rays in a tree larger than the caches wait on memory for most of their
+// time: each node a ray visits is a load that the next step depends on. Here, when a ray has
+// chosen its next node (or the leaves of its node), it prefetches them and yields to the next
+// ray; by the time its turn comes again they have arrived, while the other rays did their
+// work. Each ray takes exactly the steps of traverse (the same nodes and leaves, in the same
+// order, with the same pruning), so its answer is traverse's, bit for bit.
+//
+// A packet (packet.hpp) shares node visits between rays that go the same way; this shares
+// nothing, and suits the rays a packet does not: SphereBvh uses it for batches whose rays do
+// not share an octant.
+
+#include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "glint/geometry/accelerator.hpp"
+#include "glint/geometry/bvh/build.hpp"
+#include "glint/geometry/bvh/traverse.hpp"
+#include "glint/geometry/bvh/wide.hpp"
+#include "glint/geometry/ray.hpp"
+#include "glint/geometry/ray_batch.hpp"
+
+namespace glint::bvh {
+
+/// Asks for the cache lines of `bytes` bytes from `address`, to be read soon.
+inline void prefetch_bytes(const void* address, std::size_t bytes) {
+  constexpr std::uintptr_t kLine = 64;
+  const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(address);
+  for (std::uintptr_t line = begin & ~(kLine - 1); line < begin + bytes; line += kLine)
+    __builtin_prefetch(reinterpret_cast<const void*>(line));
+}
+
+/// Prefetches the spheres [first, first + count) of the tree's leaf spheres.
+template <class F>
+concept LeafPrefetch = requires(F& prefetch_leaf, std::uint32_t first, std::uint32_t count) {
+  prefetch_leaf(first, count);
+};
+
+namespace detail {
+
+/// One ray's traversal, stopped between two steps.
+struct SuspendedTraversal {
+  struct Pending {
+    std::uint32_t node;
+    float enter;
+  };
+  Vec3 origin;
+  Vec3 inverse_direction;
+  float t_min = 0.0f;
+  SphereHit nearest;
+  std::uint32_t node = 0;  ///< the node to visit, or whose leaves to test next
+  bool testing_leaves = false;
+  unsigned leaves = 0, inner = 0;  ///< of `node`, once visited
+  int top = 0;
+  alignas(32) float enter[kWideWidth];
+  std::array<Pending, (kWideWidth - 1) * (kMaxDepth + 2)> stack;
+};
+
+}  // namespace detail
+
+/// traverse<kAnyHit> for each ray of `active`, interleaved (see the header comment): lane
+/// `lane` traverses for rays[lane] from best[lane] (see hit_to_beat), calling
+/// test_leaf(lane, first, count, best) where traverse would call its leaf test, and
+/// prefetch_leaf(first, count) for the leaves it is about to test. Returns the lanes for which
+/// a leaf test found a hit; best[lane] then holds it.
+template <bool kAnyHit, LaneLeafTest TestLeaf, LeafPrefetch PrefetchLeaf>
+inline LaneMask traverse_interleaved(const std::vector<WideNode>& nodes,
+                                     const Ray (&rays)[RayBatch::kWidth], LaneMask active,
+                                     SphereHit (&best)[RayBatch::kWidth], TestLeaf&& test_leaf,
+                                     PrefetchLeaf&& prefetch_leaf) {
+  if (nodes.empty() || active == 0) return 0;
+  detail::SuspendedTraversal lanes[RayBatch::kWidth];
+  for_each_lane(active, [&](int lane) {
+    detail::SuspendedTraversal& s = lanes[lane];
+    s.origin = rays[lane].origin;
+    s.inverse_direction = 1.0f / rays[lane].direction;
+    s.t_min = rays[lane].t_min;
+    s.nearest = best[lane];
+  });
+  LaneMask live = active;
+  LaneMask found = 0;
+  // Ends lane's traversal.
+  const auto finish = [&](int lane) {
+    best[lane] = lanes[lane].nearest;
+    live &= ~(LaneMask(1) << lane);
+  };
+  // Moves lane on to node `next`, to be visited on its next turn.
+  const auto go_to = [&](detail::SuspendedTraversal& s, std::uint32_t next) {
+    s.node = next;
+    s.testing_leaves = false;
+    prefetch_bytes(&nodes[next], sizeof(WideNode));
+  };
+  while (live != 0) {
+    for (LaneMask turn = live; turn != 0; turn &= turn - 1) {
+      const int lane = std::countr_zero(turn);
+      detail::SuspendedTraversal& s = lanes[lane];
+      const WideNode& node = nodes[s.node];
+      if (!s.testing_leaves) {
+        const EnteredSlots entered =
+            enter_boxes(node, s.origin, s.inverse_direction, s.t_min, s.nearest.t, s.enter);
+        s.leaves = entered.leaves;
+        s.inner = entered.inner;
+        if (s.leaves != 0) {
+          for (unsigned leaves = s.leaves; leaves != 0; leaves &= leaves - 1) {
+            const int c = std::countr_zero(leaves);
+            prefetch_leaf(node.child[c], node.count[c]);
+          }
+          s.testing_leaves = true;
+          continue;
+        }
+      }
+      bool done = false;
+      for (unsigned leaves = s.leaves; leaves != 0;) {
+        const int c = nearest_slot(s.enter, leaves);
+        leaves &= ~(1u << c);
+        if (s.enter[c] > s.nearest.t) break;
+        if (!test_leaf(lane, node.child[c], node.count[c], s.nearest)) continue;
+        found |= LaneMask(1) << lane;
+        if constexpr (kAnyHit) {
+          done = true;
+          break;
+        }
+      }
+      if (done) {
+        finish(lane);
+        continue;
+      }
+      const unsigned inner = s.inner;
+      if (inner != 0 && (inner & (inner - 1)) == 0) {
+        const int c = std::countr_zero(inner);
+        if (s.enter[c] <= s.nearest.t) {
+          go_to(s, node.child[c]);
+          continue;
+        }
+      } else if (inner != 0) {
+        int slots[kWideWidth];
+        const int n = nearest_first(s.enter, inner, slots);
+        int k = n - 1;
+        while (k > 0 && s.enter[slots[k]] > s.nearest.t)
+          --k;
+        if (s.enter[slots[0]] <= s.nearest.t) {
+          for (; k > 0; --k)
+            s.stack[std::size_t(s.top++)] = {node.child[slots[k]], s.enter[slots[k]]};
+          go_to(s, node.child[slots[0]]);
+          continue;
+        }
+      }
+      for (;;) {
+        if (s.top == 0) {
+          finish(lane);
+          break;
+        }
+        const detail::SuspendedTraversal::Pending pending = s.stack[std::size_t(--s.top)];
+        if (pending.enter <= s.nearest.t) {
+          go_to(s, pending.node);
+          break;
+        }
+      }
+    }
+  }
+  return found;
+}
+
+}  // namespace glint::bvh
