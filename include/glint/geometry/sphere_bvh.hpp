@@ -34,7 +34,7 @@ class SphereBvh {
   SphereBvh() = default;
   /// Built on up to `cores` cores (0: all there are), into the same tree whatever their number.
   explicit SphereBvh(std::vector<Input> spheres, std::size_t cores = 0)
-      : tree_(bvh::build_binary_tree(spheres, cores)),
+      : tree_(bvh::build_binary_tree(std::move(spheres), cores)),
         wide_(bvh::collapse_to_wide(tree_.nodes)),
         leaves_(bvh::group_leaves(wide_, tree_.spheres)),
         interleave_(traversal_bytes() > kInterleavedTraversalBytes) {}

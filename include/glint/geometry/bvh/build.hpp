@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "glint/detail/parallel_chunks.hpp"
+#include "glint/geometry/simd.hpp"
 #include "glint/math/vector.hpp"
 
 namespace glint::bvh {
@@ -32,12 +33,8 @@ struct SphereInput {
   std::uint32_t id;
 };
 
-/// A sphere as a leaf stores it.
-struct LeafSphere {
-  Vec3 center;
-  float radius;
-  std::uint32_t id;
-};
+/// A sphere as a leaf stores it: as given, the input reordered into the leaves' order.
+using LeafSphere = SphereInput;
 
 struct Box {
   Vec3 lower{std::numeric_limits<float>::max()};
@@ -135,13 +132,13 @@ class Builder {
   /// `cores`: how many to use at most (0: all there are); the tree is the same for any.
   BinaryTree build(std::size_t cores = 0) {
     if (cores == 0) cores = std::max(1u, std::thread::hardware_concurrency());
-    const RangeBounds root = bounds_of_range(0, spheres_.size());
     if (cores == 1 || spheres_.size() < kParallelBuildSize) {
       tree_.nodes.reserve(2 * spheres_.size());
-      build_node(0, spheres_.size(), 0, root);
-      copy_leaf_spheres();
+      build_node(0, spheres_.size(), 0, bounds_of_range(0, spheres_.size()));
+      tree_.spheres = std::move(spheres_);
       return std::move(tree_);
     }
+    const RangeBounds root = bounds_of_range(0, spheres_.size(), cores);
     // Subtrees of at most this many spheres are built in parallel: several per core, so that
     // uneven ones even out.
     const std::size_t subtree_size = std::max<std::size_t>(spheres_.size() / (8 * cores), 4096);
@@ -165,7 +162,7 @@ class Builder {
     tree_.nodes.reserve(nodes);
     std::size_t next = 0;
     lay_out(pieces, next);
-    copy_leaf_spheres();
+    tree_.spheres = std::move(spheres_);
     return std::move(tree_);
   }
 
@@ -301,6 +298,22 @@ class Builder {
     return bounds;
   }
 
+  /// bounds_of_range in chunks on up to `cores` cores: a union, the same however it is cut.
+  RangeBounds bounds_of_range(std::size_t begin, std::size_t end, std::size_t cores) const {
+    constexpr std::size_t kChunk = std::size_t{1} << 14;
+    std::vector<RangeBounds> chunks((end - begin + kChunk - 1) / kChunk);
+    glint::detail::parallel_chunks(
+        chunks.size(), 1, cores, [&](std::size_t first, std::size_t last) {
+          for (std::size_t c = first; c < last; ++c)
+            chunks[c] =
+                bounds_of_range(begin + c * kChunk, std::min(end, begin + (c + 1) * kChunk));
+        });
+    RangeBounds bounds;
+    for (const RangeBounds& chunk : chunks)
+      bounds.grow(chunk);
+    return bounds;
+  }
+
   static constexpr int kBins = Binning::kBins;
 
   /// The bounds and sphere counts of the bins.
@@ -318,6 +331,42 @@ class Builder {
 
   Bins bin(const Binning& binning, std::size_t begin, std::size_t end) const {
     Bins bins;
+#if defined(GLINT_SSE41)
+    // Binning is most of the build: each bin's four corners kept as SSE registers' worth, and
+    // a sphere's centre and radius read as one, take a quarter of the scalar min and max.
+    // Operands in Box::grow's order (glm::min(a, b) is b < a ? b : a, _mm_min_ps(b, a) too),
+    // so the bounds are the same floats.
+    static_assert(offsetof(SphereInput, radius) == 3 * sizeof(float));
+    struct Corners {
+      __m128 box_lower, box_upper, centroid_lower, centroid_upper;
+    };
+    const __m128 highest = _mm_set1_ps(std::numeric_limits<float>::max());
+    const __m128 lowest = _mm_set1_ps(-std::numeric_limits<float>::max());
+    std::array<Corners, kBins> corners;
+    corners.fill({highest, lowest, highest, lowest});
+    for (std::size_t i = begin; i < end; ++i) {
+      const SphereInput& s = spheres_[i];
+      const auto b = std::size_t(binning.bin_of(s));
+      Corners& c = corners[b];
+      const __m128 center_radius = _mm_loadu_ps(&s.center.x);  // the radius in the last lane
+      const __m128 radius = _mm_shuffle_ps(center_radius, center_radius, _MM_SHUFFLE(3, 3, 3, 3));
+      c.box_lower = _mm_min_ps(_mm_sub_ps(center_radius, radius), c.box_lower);
+      c.box_upper = _mm_max_ps(_mm_add_ps(center_radius, radius), c.box_upper);
+      c.centroid_lower = _mm_min_ps(center_radius, c.centroid_lower);
+      c.centroid_upper = _mm_max_ps(center_radius, c.centroid_upper);
+      ++bins.counts[b];
+    }
+    const auto vec3 = [](__m128 v) {
+      alignas(16) float f[4];
+      _mm_store_ps(f, v);
+      return Vec3(f[0], f[1], f[2]);
+    };
+    for (std::size_t b = 0; b < std::size_t(kBins); ++b) {
+      if (bins.counts[b] == 0) continue;  // left as an empty box
+      bins.bounds[b].box = {vec3(corners[b].box_lower), vec3(corners[b].box_upper)};
+      bins.bounds[b].centroids = {vec3(corners[b].centroid_lower), vec3(corners[b].centroid_upper)};
+    }
+#else
     for (std::size_t i = begin; i < end; ++i) {
       const SphereInput& s = spheres_[i];
       const int b = binning.bin_of(s);
@@ -325,6 +374,7 @@ class Builder {
       bins.bounds[b].centroids.grow(s.center);
       ++bins.counts[b];
     }
+#endif
     return bins;
   }
 
@@ -413,16 +463,10 @@ class Builder {
     return middle;
   }
 
-  void copy_leaf_spheres() {
-    tree_.spheres.reserve(spheres_.size());
-    for (const SphereInput& s : spheres_)
-      tree_.spheres.push_back(LeafSphere{s.center, s.radius, s.id});
-  }
-
   std::uint32_t make_leaf(std::size_t begin, std::size_t end, const Box& box) {
     const auto index = static_cast<std::uint32_t>(tree_.nodes.size());
-    // Leaves come in the order of their ranges, so a leaf's spheres are where its range is:
-    // copied once, at the end (copy_leaf_spheres).
+    // Leaves come in the order of their ranges, so a leaf's spheres are where its range is: the
+    // reordered input becomes the tree's spheres at the end.
     tree_.nodes.push_back(Node{box.lower, static_cast<std::uint32_t>(begin), box.upper,
                                static_cast<std::uint32_t>(end - begin)});
     return index;
@@ -443,9 +487,9 @@ class Builder {
 
 }  // namespace detail
 
-/// The binary tree over `spheres` (which it reorders); empty for no spheres. Built on up to
-/// `cores` cores (0: all there are), into the same tree whatever their number.
-inline BinaryTree build_binary_tree(std::vector<SphereInput>& spheres, std::size_t cores = 0) {
+/// The binary tree over `spheres`, which become its leaf spheres; empty for no spheres. Built
+/// on up to `cores` cores (0: all there are), into the same tree whatever their number.
+inline BinaryTree build_binary_tree(std::vector<SphereInput> spheres, std::size_t cores = 0) {
   if (spheres.empty()) return {};
   return detail::Builder(spheres).build(cores);
 }
