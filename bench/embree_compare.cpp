@@ -15,13 +15,13 @@
 // rays) a query, whose answers must be those of closest_hit exactly (else exit status 1);
 // Embree through rtcIntersect1 and rtcIntersect8 over one
 // RTC_GEOMETRY_TYPE_SPHERE_POINT geometry. Throughput is rays per wall-clock second on 1 and
-// 2 threads (the best of a few runs, after a warm-up), build time the best of a few builds:
-// glint's SphereBvh over all the spheres and Embree's rtcCommitScene, each limited to the row's
-// number of threads (glint builds on one core below 65,536 spheres).
-// on which both engines report the same sphere (or both a miss) is printed, so that a fast wrong
-// answer cannot pass unnoticed: below 99.9% on any row the program fails (exit status 1), as it
-// does when Embree fails. The few rays that differ graze a sphere or pass between two at equal
-// distance, where single precision cannot tell which is first.
+// 2 threads, build time that of glint's SphereBvh over all the spheres and of Embree's
+// rtcCommitScene, each limited to the row's number of threads (glint builds on one core below
+// 65,536 spheres): the best of 5 runs after a warm-up, the engines' runs taken in turns. The
+// share of rays on which both engines report the same sphere (or both a miss) is printed, so that a
+// fast wrong answer cannot pass unnoticed: below 99.9% on any row the program fails (exit status
+// 1), as it does when Embree fails. The few rays that differ graze a sphere or pass between two at
+// equal distance, where single precision cannot tell which is first.
 //
 // Built only when Embree 3 is found (bench/CMakeLists.txt); nothing else depends on it.
 
@@ -153,12 +153,16 @@ double timed_parallel(std::size_t count, int threads,
   return seconds_since(start);
 }
 
-/// The best of `runs` timings after one warm-up run.
-double best_of(int runs, const std::function<double()>& run) {
-  run();
-  double best = std::numeric_limits<double>::infinity();
+/// The best of `runs` timings of each of `run`, after a warm-up: taken in turns, a round of
+/// one run each at a time, so that a slow spell of the machine falls on all of them rather than
+/// on one.
+std::vector<double> best_in_turns(int runs, const std::vector<std::function<double()>>& run) {
+  for (const auto& r : run)
+    r();
+  std::vector<double> best(run.size(), std::numeric_limits<double>::infinity());
   for (int i = 0; i < runs; ++i)
-    best = std::min(best, run());
+    for (std::size_t k = 0; k < run.size(); ++k)
+      best[k] = std::min(best[k], run[k]());
   return best;
 }
 
@@ -317,7 +321,7 @@ int main(int argc, char** argv) {
   }
   const int image_side = quick ? 256 : 1024;
   const std::size_t random_count = quick ? 1 << 16 : 1 << 20;
-  const int runs = quick ? 1 : 3;
+  const int runs = quick ? 1 : 5;
 
   std::vector<TestScene> scenes;
   for (const int count :
@@ -339,14 +343,6 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < test.description.spheres.size(); ++i)
       inputs.push_back({test.description.spheres[i].center, test.description.spheres[i].radius,
                         std::uint32_t(i)});
-    const auto glint_build = [&](int threads) {
-      return best_of(runs, [&] {
-        const auto start = Clock::now();
-        const glint::SphereBvh bvh(inputs, std::size_t(threads));
-        return seconds_since(start);
-      });
-    };
-    const double glint_build_seconds[] = {glint_build(1), glint_build(2)};
     for (const RaySet& set :
          {camera_rays(test.description, image_side), random_rays(test.description, random_count)}) {
       const std::size_t n = set.rays.size();
@@ -359,13 +355,20 @@ int main(int argc, char** argv) {
         row.spheres = test.description.spheres.size();
         row.ray_count = n;
         row.threads = threads;
-        row.glint_build = glint_build_seconds[threads - 1];
         const EmbreeScene embree(test.description, threads);
-        row.embree_build = best_of(runs, [&] {
-          const EmbreeScene rebuilt(test.description, threads);
-          return rebuilt.build_seconds();
-        });
-        const double glint_seconds = best_of(runs, [&] {
+        const std::vector<double> build_seconds =
+            best_in_turns(runs, {[&] {
+                                   const auto start = Clock::now();
+                                   const glint::SphereBvh bvh(inputs, std::size_t(threads));
+                                   return seconds_since(start);
+                                 },
+                                 [&] {
+                                   const EmbreeScene rebuilt(test.description, threads);
+                                   return rebuilt.build_seconds();
+                                 }});
+        row.glint_build = build_seconds[0];
+        row.embree_build = build_seconds[1];
+        const auto glint_run = [&] {
           return timed_parallel(n, threads, [&](std::size_t begin, std::size_t end) {
             for (std::size_t i = begin; i < end; ++i) {
               const std::optional<glint::SphereHit> hit = scene.closest_hit(set.rays[i]);
@@ -373,8 +376,8 @@ int main(int argc, char** argv) {
               glint_t[i] = hit ? hit->t : glint::kInfinity;
             }
           });
-        });
-        const double glint8_seconds = best_of(runs, [&] {
+        };
+        const auto glint8_run = [&] {
           return timed_parallel(n, threads, [&](std::size_t begin, std::size_t end) {
             glint::RayBatch batch;
             glint::HitBatch hits;
@@ -388,20 +391,24 @@ int main(int argc, char** argv) {
               }
             }
           });
-        });
-        for (std::size_t i = 0; i < n; ++i)
-          row.batched_exact = row.batched_exact && glint8_hits[i] == glint_hits[i] &&
-                              std::memcmp(&glint8_t[i], &glint_t[i], sizeof(float)) == 0;
-        const double embree1_seconds = best_of(runs, [&] {
+        };
+        const auto embree1_run = [&] {
           return timed_parallel(n, threads, [&](std::size_t begin, std::size_t end) {
             embree.intersect1(set.rays.data() + begin, end - begin, embree_hits.data() + begin);
           });
-        });
-        const double embree8_seconds = best_of(runs, [&] {
+        };
+        const auto embree8_run = [&] {
           return timed_parallel(n, threads, [&](std::size_t begin, std::size_t end) {
             embree.intersect8(set.rays.data() + begin, end - begin, embree_hits.data() + begin);
           });
-        });
+        };
+        const std::vector<double> seconds =
+            best_in_turns(runs, {glint_run, glint8_run, embree1_run, embree8_run});
+        const double glint_seconds = seconds[0], glint8_seconds = seconds[1],
+                     embree1_seconds = seconds[2], embree8_seconds = seconds[3];
+        for (std::size_t i = 0; i < n; ++i)
+          row.batched_exact = row.batched_exact && glint8_hits[i] == glint_hits[i] &&
+                              std::memcmp(&glint8_t[i], &glint_t[i], sizeof(float)) == 0;
         std::size_t agree = 0;
         for (std::size_t i = 0; i < n; ++i)
           agree += glint_hits[i] == embree_hits[i] ? 1 : 0;

@@ -217,9 +217,9 @@ class SphereBvh {
                                       kAnyHit);
         },
         [&](std::uint32_t first, std::uint32_t count) {
-          const std::uint32_t group_count = (count + SphereGroup::kSize - 1) / SphereGroup::kSize;
-          bvh::prefetch_bytes(groups + first / SphereGroup::kSize,
-                              group_count * sizeof(SphereGroup));
+          const SphereGroup* group = groups + first / SphereGroup::kSize;
+          for (std::uint32_t i = 0; i < count; i += SphereGroup::kSize)
+            bvh::prefetch(group++);
         });
   }
 

@@ -27,12 +27,15 @@
 
 namespace glint::bvh {
 
-/// Asks for the cache lines of `bytes` bytes from `address`, to be read soon.
-inline void prefetch_bytes(const void* address, std::size_t bytes) {
-  constexpr std::uintptr_t kLine = 64;
-  const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(address);
-  for (std::uintptr_t line = begin & ~(kLine - 1); line < begin + bytes; line += kLine)
-    __builtin_prefetch(reinterpret_cast<const void*>(line));
+/// Asks for the cache lines of `object`, to be read soon.
+template <class T>
+inline void prefetch(const T* object) {
+  constexpr std::size_t kLine = 64;
+  const char* bytes = reinterpret_cast<const char*>(object);
+  for (std::size_t offset = 0; offset < sizeof(T); offset += kLine)
+    __builtin_prefetch(bytes + offset);
+  // An object not aligned to a line may reach one line further.
+  if constexpr (alignof(T) % kLine != 0) __builtin_prefetch(bytes + sizeof(T) - 1);
 }
 
 /// Prefetches the spheres [first, first + count) of the tree's leaf spheres.
@@ -93,7 +96,7 @@ inline LaneMask traverse_interleaved(const std::vector<WideNode>& nodes,
   const auto go_to = [&](detail::SuspendedTraversal& s, std::uint32_t next) {
     s.node = next;
     s.testing_leaves = false;
-    prefetch_bytes(&nodes[next], sizeof(WideNode));
+    prefetch(&nodes[next]);
   };
   while (live != 0) {
     for (LaneMask turn = live; turn != 0; turn &= turn - 1) {

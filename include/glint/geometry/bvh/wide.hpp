@@ -17,8 +17,9 @@ namespace glint::bvh {
 inline constexpr int kWideWidth = 8;
 
 /// kWideWidth child slots, each an inner node (count 0; child = index of its wide node), a leaf
-/// (count > 0; child = its first sphere) or empty (child = kEmptySlot).
-struct alignas(32) WideNode {
+/// (count > 0; child = its first sphere) or empty (child = kEmptySlot). Aligned to cache lines:
+/// a node is four lines, never five.
+struct alignas(64) WideNode {
   float lower_x[kWideWidth], lower_y[kWideWidth], lower_z[kWideWidth];
   float upper_x[kWideWidth], upper_y[kWideWidth], upper_z[kWideWidth];
   std::uint32_t child[kWideWidth];
