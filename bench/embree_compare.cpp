@@ -14,8 +14,10 @@
 // apart as glint does) and through Scene::closest_hits, eight rays (one 4x2 block of camera
 // rays) a query, whose answers must be those of closest_hit exactly (else exit status 1);
 // Embree through rtcIntersect1 and rtcIntersect8 over one
-// RTC_GEOMETRY_TYPE_SPHERE_POINT geometry. Throughput is rays per wall-clock second on 1 and
-// 2 threads, build time that of glint's SphereBvh over all the spheres and of Embree's
+// RTC_GEOMETRY_TYPE_SPHERE_POINT geometry. Both engines are told which rays are coherent:
+// glint's batched query by RayCoherence::incoherent for the random rays, Embree's by the
+// coherent or incoherent flag of its intersection context. Throughput is rays per wall-clock second
+// on 1 and 2 threads, build time that of glint's SphereBvh over all the spheres and of Embree's
 // rtcCommitScene, each limited to the row's number of threads (glint builds on one core below
 // 65,536 spheres): the best of 5 runs after a warm-up, the engines' runs taken in turns. The
 // share of rays on which both engines report the same sphere (or both a miss) is printed, so that a
@@ -96,12 +98,13 @@ TestScene packed_scene(int side) {
 
 struct RaySet {
   std::string name;
+  bool coherent;  ///< told to both engines: glint's RayCoherence, Embree's context flags
   std::vector<glint::Ray> rays;
 };
 
 RaySet camera_rays(const glint::SceneDescription& d, int side) {
   const glint::Camera camera(d.camera, side, side);
-  RaySet set{"camera", {}};
+  RaySet set{"camera", true, {}};
   set.rays.reserve(std::size_t(side) * std::size_t(side));
   for (int by = 0; by < side; by += 2)
     for (int bx = 0; bx < side; bx += 4)
@@ -120,7 +123,7 @@ RaySet random_rays(const glint::SceneDescription& d, std::size_t count) {
       upper = glm::max(upper, s.center);
     }
   glint::Pcg32 rng(12345, 678);
-  RaySet set{"random", {}};
+  RaySet set{"random", false, {}};
   set.rays.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
     glint::Ray ray;
@@ -202,9 +205,10 @@ class EmbreeScene {
 
   double build_seconds() const { return build_seconds_; }
 
-  void intersect1(const glint::Ray* rays, std::size_t count, std::uint32_t* hits) const {
+  void intersect1(const glint::Ray* rays, std::size_t count, bool coherent,
+                  std::uint32_t* hits) const {
     RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+    init_context(context, coherent);
     for (std::size_t i = 0; i < count; ++i) {
       RTCRayHit rh;
       set_ray(rh.ray, rays[i]);
@@ -215,9 +219,10 @@ class EmbreeScene {
   }
 
   /// `count` a multiple of 8.
-  void intersect8(const glint::Ray* rays, std::size_t count, std::uint32_t* hits) const {
+  void intersect8(const glint::Ray* rays, std::size_t count, bool coherent,
+                  std::uint32_t* hits) const {
     RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+    init_context(context, coherent);
     alignas(32) int valid[8];
     std::fill(valid, valid + 8, -1);
     for (std::size_t base = 0; base < count; base += 8) {
@@ -246,6 +251,11 @@ class EmbreeScene {
   }
 
  private:
+  static void init_context(RTCIntersectContext& context, bool coherent) {
+    rtcInitIntersectContext(&context);
+    context.flags =
+        coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  }
   static void set_ray(RTCRay& ray, const glint::Ray& r) {
     ray.org_x = r.origin.x;
     ray.org_y = r.origin.y;
@@ -384,7 +394,9 @@ int main(int argc, char** argv) {
             for (std::size_t base = begin; base < end; base += 8) {
               for (int k = 0; k < 8; ++k)
                 batch.set(k, set.rays[base + std::size_t(k)]);
-              scene.closest_hits(batch, glint::RayBatch::kAllLanes, hits);
+              scene.closest_hits(
+                  batch, glint::RayBatch::kAllLanes, hits,
+                  set.coherent ? glint::RayCoherence::unknown : glint::RayCoherence::incoherent);
               for (int k = 0; k < 8; ++k) {
                 glint8_hits[base + std::size_t(k)] = hits.sphere[k];
                 glint8_t[base + std::size_t(k)] = hits.t[k];
@@ -394,12 +406,14 @@ int main(int argc, char** argv) {
         };
         const auto embree1_run = [&] {
           return timed_parallel(n, threads, [&](std::size_t begin, std::size_t end) {
-            embree.intersect1(set.rays.data() + begin, end - begin, embree_hits.data() + begin);
+            embree.intersect1(set.rays.data() + begin, end - begin, set.coherent,
+                              embree_hits.data() + begin);
           });
         };
         const auto embree8_run = [&] {
           return timed_parallel(n, threads, [&](std::size_t begin, std::size_t end) {
-            embree.intersect8(set.rays.data() + begin, end - begin, embree_hits.data() + begin);
+            embree.intersect8(set.rays.data() + begin, end - begin, set.coherent,
+                              embree_hits.data() + begin);
           });
         };
         const std::vector<double> seconds =

@@ -171,7 +171,8 @@ struct Tally {
 /// Checks closest_hits and occluded against the single-ray queries for one batch, with the
 /// lanes of `active` set and the others holding `junk`.
 void check_batch(const glint::Scene& scene, const Ray (&rays)[kWidth], LaneMask active,
-                 const Ray& junk, Tally& tally) {
+                 const Ray& junk, Tally& tally,
+                 glint::RayCoherence coherence = glint::RayCoherence::unknown) {
   RayBatch batch;
   batch.heads_into_origin_sphere = 0;
   for (int lane = 0; lane < kWidth; ++lane)
@@ -179,8 +180,8 @@ void check_batch(const glint::Scene& scene, const Ray (&rays)[kWidth], LaneMask 
   glint::HitBatch hits;
   for (int lane = 0; lane < kWidth; ++lane)
     hits.set(lane, {1234.5f + float(lane), 0xdead0000u + std::uint32_t(lane)});
-  const LaneMask found = scene.closest_hits(batch, active, hits);
-  const LaneMask blocked = scene.occluded(batch, active);
+  const LaneMask found = scene.closest_hits(batch, active, hits, coherence);
+  const LaneMask blocked = scene.occluded(batch, active, coherence);
   CHECK((found & ~active) == 0);
   CHECK((blocked & ~active) == 0);
   ++tally.batches;
@@ -212,7 +213,8 @@ void check_batch(const glint::Scene& scene, const Ray (&rays)[kWidth], LaneMask 
 
 /// Random and coherent batches, all lanes active and random subsets, against `scene`.
 Tally check_scene(const glint::Scene& scene, const std::vector<glint::SphereDescription>& spheres,
-                  float half, std::uint64_t seed, int batches) {
+                  float half, std::uint64_t seed, int batches,
+                  glint::RayCoherence coherence = glint::RayCoherence::unknown) {
   glint::Pcg32 rng(seed, 11);
   Tally tally;
   for (int b = 0; b < batches; ++b) {
@@ -233,7 +235,7 @@ Tally check_scene(const glint::Scene& scene, const std::vector<glint::SphereDesc
       junk.t_min = nan;
       junk.t_max = nan;
     }
-    check_batch(scene, rays, active, junk, tally);
+    check_batch(scene, rays, active, junk, tally, coherence);
   }
   return tally;
 }
@@ -308,6 +310,28 @@ TEST_CASE("closest_hits and occluded: large scenes, the BVH", "[geometry][ray_ba
             check_scene(scene, test.spheres, half, 200 + std::uint64_t(count), 1500);
         check_coverage(tally);
       }
+    }
+  }
+}
+
+TEST_CASE("closest_hits and occluded: incoherent batches in a BVH beyond the caches",
+          "[geometry][ray_batch]") {
+  // Large enough for SphereBvh to interleave the traversals of incoherent batches.
+  for (const bool walls : {false, true}) {
+    DYNAMIC_SECTION((walls ? "in a room" : "no walls")) {
+      glint::Pcg32 rng(41, walls ? 1 : 2);
+      TestScene test;
+      if (walls) add_room(test, 140.0f, 1e5f);
+      add_random_spheres(test, rng, 40000, 120.0f, 0.3f, 2.0f);
+      std::vector<glint::SphereBvh::Input> inputs;
+      for (const glint::SphereDescription& s : test.spheres)
+        if (s.radius < 1e3f) inputs.push_back({s.center, s.radius, std::uint32_t(inputs.size())});
+      REQUIRE(glint::SphereBvh(inputs).traversal_bytes() >
+              glint::SphereBvh::kInterleavedTraversalBytes);
+      const glint::Scene scene = test.build();
+      const Tally tally =
+          check_scene(scene, test.spheres, 120.0f, 300, 1500, glint::RayCoherence::incoherent);
+      check_coverage(tally);
     }
   }
 }

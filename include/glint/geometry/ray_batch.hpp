@@ -17,6 +17,19 @@ namespace glint {
 /// Bit i is lane i of a batch.
 using LaneMask = std::uint32_t;
 
+/// What a caller of the batched queries knows of its rays: a hint for the traversal, which
+/// changes only its speed, never an answer (like Embree's coherent and incoherent contexts).
+enum class RayCoherence {
+  /// Batches of a renderer: the eight rays may go different ways, but consecutive batches
+  /// come from neighbouring paths and reuse what the last ones brought into the caches. A
+  /// BVH takes batches in one octant as a packet, the others ray by ray.
+  unknown,
+  /// Rays with nothing in common from one batch to the next (queries scattered over a scene):
+  /// the eight traversals of a BVH larger than the caches are interleaved, so that they wait
+  /// on memory together (SphereBvh::kInterleavedTraversalBytes).
+  incoherent,
+};
+
 struct alignas(32) RayBatch {
   static constexpr int kWidth = 8;
   static constexpr LaneMask kAllLanes = (LaneMask(1) << kWidth) - 1;

@@ -145,22 +145,26 @@ class Scene {
   /// lane by lane. Inactive lanes of `hits` are left as they were.
   ///
   /// With AVX2 the walls and the linear set are scanned for the eight rays at once
-  /// (ray_batch_kernel.hpp) and the BVH traversed as a packet for coherent batches
+  /// (ray_batch_kernel.hpp) and the BVH traversed as `coherence` suggests
   /// (SphereBvh::closest_hits); without, this is closest_hit lane by lane.
-  LaneMask closest_hits(const RayBatch& rays, LaneMask active, HitBatch& hits) const {
+  LaneMask closest_hits(const RayBatch& rays, LaneMask active, HitBatch& hits,
+                        RayCoherence coherence = RayCoherence::unknown) const {
 #ifdef GLINT_AVX2
-    return closest_hits_avx2(rays, active, hits);
+    return closest_hits_avx2(rays, active, hits, coherence);
 #else
+    (void)coherence;
     return closest_hits_per_lane(rays, active, hits);
 #endif
   }
 
   /// occluded for each active lane of `rays`: the lanes whose ray is blocked. With AVX2 in
   /// the same way as closest_hits, each step for the lanes that no earlier one blocked.
-  LaneMask occluded(const RayBatch& rays, LaneMask active) const {
+  LaneMask occluded(const RayBatch& rays, LaneMask active,
+                    RayCoherence coherence = RayCoherence::unknown) const {
 #ifdef GLINT_AVX2
-    return occluded_avx2(rays, active);
+    return occluded_avx2(rays, active, coherence);
 #else
+    (void)coherence;
     return occluded_per_lane(rays, active);
 #endif
   }
@@ -185,7 +189,8 @@ class Scene {
 
 #ifdef GLINT_AVX2
   /// The batched queries with each of the single-ray ones' steps run for all lanes at once.
-  LaneMask closest_hits_avx2(const RayBatch& rays, LaneMask active, HitBatch& hits) const {
+  LaneMask closest_hits_avx2(const RayBatch& rays, LaneMask active, HitBatch& hits,
+                             RayCoherence coherence = RayCoherence::unknown) const {
     // closest_hit's steps, each for all lanes: the origin sphere, the linear sets, the BVH.
     SphereHit hit[RayBatch::kWidth];
     LaneMask found = 0;
@@ -206,7 +211,7 @@ class Scene {
       avx2::store_lanes(best, linear_found, hit);
       found |= linear_found;
     }
-    if (!hierarchy_.empty()) found |= hierarchy_.closest_hits(rays, active, hit);
+    if (!hierarchy_.empty()) found |= hierarchy_.closest_hits(rays, active, hit, coherence);
     const SphereHit none;
     for_each_lane(
         active, [&](int lane) { hits.set(lane, ((found >> lane) & 1u) != 0 ? hit[lane] : none); });
@@ -217,7 +222,8 @@ class Scene {
     for (SphereHit& b : bound)
       b = SphereHit{-kInfinity, 0};
   }
-  LaneMask occluded_avx2(const RayBatch& rays, LaneMask active) const {
+  LaneMask occluded_avx2(const RayBatch& rays, LaneMask active,
+                         RayCoherence coherence = RayCoherence::unknown) const {
     LaneMask blocked = 0;
     for_each_lane(active, [&](int lane) {
       const Ray ray = rays.get(lane);
@@ -239,7 +245,8 @@ class Scene {
                                 walls_.columns(), linear_.columns());
       pending = active & ~blocked;
     }
-    if (pending != 0 && !hierarchy_.empty()) blocked |= hierarchy_.any_hits(rays, pending);
+    if (pending != 0 && !hierarchy_.empty())
+      blocked |= hierarchy_.any_hits(rays, pending, coherence);
     return blocked;
   }
 #endif

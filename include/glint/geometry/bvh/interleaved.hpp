@@ -5,12 +5,13 @@
 // time: each node a ray visits is a load that the next step depends on. Here, when a ray has
 // chosen its next node (or the leaves of its node), it prefetches them and yields to the next
 // ray; by the time its turn comes again they have arrived, while the other rays did their
-// work. Each ray takes exactly the steps of traverse (the same nodes and leaves, in the same
-// order, with the same pruning), so its answer is traverse's, bit for bit.
+// work.
+//
+// Each ray visits the nodes and leaves that traverse visits, in the same order, with the same
+// pruning, so its answer is traverse's, bit for bit.
 //
 // A packet (packet.hpp) shares node visits between rays that go the same way; this shares
-// nothing, and suits the rays a packet does not: SphereBvh uses it for batches whose rays do
-// not share an octant.
+// nothing. SphereBvh uses it for batches of incoherent rays (RayCoherence::incoherent).
 
 #include <array>
 #include <bit>
@@ -141,15 +142,14 @@ inline LaneMask traverse_interleaved(const std::vector<WideNode>& nodes,
           continue;
         }
       } else if (inner != 0) {
-        int slots[kWideWidth];
-        const int n = nearest_first(s.enter, inner, slots);
-        int k = n - 1;
-        while (k > 0 && s.enter[slots[k]] > s.nearest.t)
-          --k;
-        if (s.enter[slots[0]] <= s.nearest.t) {
-          for (; k > 0; --k)
-            s.stack[std::size_t(s.top++)] = {node.child[slots[k]], s.enter[slots[k]]};
-          go_to(s, node.child[slots[0]]);
+        const int first = nearest_slot(s.enter, inner);
+        if (s.enter[first] <= s.nearest.t) {
+          for (unsigned rest = inner & ~(1u << first); rest != 0; rest &= rest - 1) {
+            const int c = std::countr_zero(rest);
+            s.stack[std::size_t(s.top)] = {node.child[c], s.enter[c]};
+            s.top += s.enter[c] <= s.nearest.t;
+          }
+          go_to(s, node.child[first]);
           continue;
         }
       }
