@@ -124,48 +124,24 @@ class SphereBvh {
   /// (bvh/interleaved.hpp).
   LaneMask closest_hits_interleaved(const RayBatch& rays, LaneMask active,
                                     SphereHit (&hits)[RayBatch::kWidth]) const {
-    Ray lane_rays[RayBatch::kWidth];
-    SphereHit best[RayBatch::kWidth];
-    for_each_lane(active, [&](int lane) {
-      lane_rays[lane] = rays.get(lane);
-      best[lane] = hit_to_beat(lane_rays[lane], hits[lane]);
-    });
-    const LaneMask found = traverse_interleaved<false>(lane_rays, active, best);
-    for_each_lane(found, [&](int lane) { hits[lane] = best[lane]; });
-    return found;
+    LaneStart start(rays, active, hits);
+    return start.finish(traverse_interleaved<false>(start.rays, active, start.best), hits);
   }
   LaneMask any_hits_interleaved(const RayBatch& rays, LaneMask active) const {
-    Ray lane_rays[RayBatch::kWidth];
-    SphereHit best[RayBatch::kWidth];
-    for_each_lane(active, [&](int lane) {
-      lane_rays[lane] = rays.get(lane);
-      best[lane] = hit_to_beat(lane_rays[lane], SphereHit{});
-    });
-    return traverse_interleaved<true>(lane_rays, active, best);
+    LaneStart start(rays, active);
+    return traverse_interleaved<true>(start.rays, active, start.best);
   }
 
 #ifdef GLINT_AVX2
   /// closest_hits and any_hits with one packet traversal (bvh/packet.hpp) for all lanes.
   LaneMask closest_hits_packet(const RayBatch& rays, LaneMask active,
                                SphereHit (&hits)[RayBatch::kWidth]) const {
-    Ray lane_rays[RayBatch::kWidth];
-    SphereHit best[RayBatch::kWidth];
-    for_each_lane(active, [&](int lane) {
-      lane_rays[lane] = rays.get(lane);
-      best[lane] = hit_to_beat(lane_rays[lane], hits[lane]);
-    });
-    const LaneMask found = traverse_packet<false>(rays, active, lane_rays, best);
-    for_each_lane(found, [&](int lane) { hits[lane] = best[lane]; });
-    return found;
+    LaneStart start(rays, active, hits);
+    return start.finish(traverse_packet<false>(rays, active, start.rays, start.best), hits);
   }
   LaneMask any_hits_packet(const RayBatch& rays, LaneMask active) const {
-    Ray lane_rays[RayBatch::kWidth];
-    SphereHit best[RayBatch::kWidth];
-    for_each_lane(active, [&](int lane) {
-      lane_rays[lane] = rays.get(lane);
-      best[lane] = hit_to_beat(lane_rays[lane], SphereHit{});
-    });
-    return traverse_packet<true>(rays, active, lane_rays, best);
+    LaneStart start(rays, active);
+    return traverse_packet<true>(rays, active, start.rays, start.best);
   }
 #endif
 
@@ -202,6 +178,33 @@ class SphereBvh {
   }
 
  private:
+  /// The rays of a batch's active lanes and the hits they have to beat (hit_to_beat), as the
+  /// batched traversals take them.
+  struct LaneStart {
+    Ray rays[RayBatch::kWidth];
+    SphereHit best[RayBatch::kWidth];
+
+    /// For any_hits: no hit to beat but the rays' t_max.
+    LaneStart(const RayBatch& batch, LaneMask active) {
+      for_each_lane(active, [&](int lane) {
+        rays[lane] = batch.get(lane);
+        best[lane] = hit_to_beat(rays[lane], SphereHit{});
+      });
+    }
+    /// For closest_hits: the caller's hits to beat.
+    LaneStart(const RayBatch& batch, LaneMask active, const SphereHit (&hits)[RayBatch::kWidth]) {
+      for_each_lane(active, [&](int lane) {
+        rays[lane] = batch.get(lane);
+        best[lane] = hit_to_beat(rays[lane], hits[lane]);
+      });
+    }
+    /// Stores the hits of the lanes of `found` in `hits`; returns `found`.
+    LaneMask finish(LaneMask found, SphereHit (&hits)[RayBatch::kWidth]) const {
+      for_each_lane(found, [&](int lane) { hits[lane] = best[lane]; });
+      return found;
+    }
+  };
+
   template <bool kAnyHit>
   bool traverse(const Ray& ray, SphereHit& best) const {
     const SphereGroup* groups = leaves_.data();
