@@ -48,7 +48,7 @@ class SphereBvh {
   /// traversals of batches of incoherent rays (RayCoherence::incoherent, bvh/interleaved.hpp),
   /// which pays when their nodes come from beyond the core's own caches. On 2-vCPU AMD EPYC
   /// Zen 5 (1 MiB L2), for random rays (glint-embree-compare, and a lattice of spheres of 0.1
-  /// to 6.4 MB) it is 0.86-0.93x one traversal per lane at 0.4-0.8 MB, 1.2x at 4 MB, 1.4-1.9x
+  /// to 6.4 MB) it is 0.86-0.93x one traversal per lane at 0.4-0.8 MB, 1.2x at 4 MB, 1.3-2.1x
   /// at 2.5-38 MB. A renderer's batches are another matter: in the million-sphere scene
   /// (38 MB), the wavefront renderer was 5-10% slower with its bounce rays interleaved, since
   /// neighbouring paths keep the nodes they need in the caches; hence the hint.
@@ -77,11 +77,10 @@ class SphereBvh {
   /// which it found a hit. Exactly closest_hit's answer lane by lane: for incoherent rays in a
   /// tree larger than kInterleavedTraversalBytes, the lanes' traversals interleaved; else a
   /// packet traversal for batches whose rays share an octant (same_octant), one traversal per
-  /// lane for the others. On 2-vCPU
-  /// AMD EPYC Zen 5 (glint-features-bench BM_BvhBatch, 10^4 and 10^5 spheres) the packet is
-  /// 1.9-2.3x as fast as eight traversals for 4x2 blocks of camera rays (2.5-2.7x for
-  /// occlusion), but 0.56-0.57x for random rays (0.9-1.04x): random batches of eight almost
-  /// never share an octant, camera blocks almost always do.
+  /// lane for the others. On 2-vCPU AMD EPYC Zen 5 (glint-features-bench BM_BvhBatch, 10^4
+  /// and 10^5 spheres) the packet is 1.9-2.3x as fast as eight traversals for 4x2 blocks of
+  /// camera rays (2.5-2.7x for occlusion), but 0.56-0.57x for random rays (0.9-1.04x): random
+  /// batches of eight almost never share an octant, camera blocks almost always do.
   LaneMask closest_hits(const RayBatch& rays, LaneMask active, SphereHit (&hits)[RayBatch::kWidth],
                         RayCoherence coherence = RayCoherence::unknown) const {
     if (coherence == RayCoherence::incoherent && interleave_)

@@ -298,20 +298,33 @@ class Builder {
     return bounds;
   }
 
-  /// bounds_of_range in chunks on up to `cores` cores: a union, the same however it is cut.
-  RangeBounds bounds_of_range(std::size_t begin, std::size_t end, std::size_t cores) const {
+  /// of(first, last) over [begin, end) cut into chunks, on up to `cores` cores, the results
+  /// merged with merge(total, chunk): for unions and sums, which come out the same however the
+  /// range is cut. A large range at the top of a parallel build is worked on this way, since it
+  /// is split before the subtrees can be built in parallel.
+  template <class Result, class Of, class Merge>
+  static Result in_chunks(std::size_t begin, std::size_t end, std::size_t cores, const Of& of,
+                          const Merge& merge) {
     constexpr std::size_t kChunk = std::size_t{1} << 14;
-    std::vector<RangeBounds> chunks((end - begin + kChunk - 1) / kChunk);
+    if (cores == 1 || end - begin < kParallelBuildSize) return of(begin, end);
+    std::vector<Result> chunks((end - begin + kChunk - 1) / kChunk);
     glint::detail::parallel_chunks(
         chunks.size(), 1, cores, [&](std::size_t first, std::size_t last) {
           for (std::size_t c = first; c < last; ++c)
-            chunks[c] =
-                bounds_of_range(begin + c * kChunk, std::min(end, begin + (c + 1) * kChunk));
+            chunks[c] = of(begin + c * kChunk, std::min(end, begin + (c + 1) * kChunk));
         });
-    RangeBounds bounds;
-    for (const RangeBounds& chunk : chunks)
-      bounds.grow(chunk);
-    return bounds;
+    Result total;
+    for (const Result& chunk : chunks)
+      merge(total, chunk);
+    return total;
+  }
+
+  /// bounds_of_range on up to `cores` cores.
+  RangeBounds bounds_of_range(std::size_t begin, std::size_t end, std::size_t cores) const {
+    return in_chunks<RangeBounds>(
+        begin, end, cores,
+        [&](std::size_t first, std::size_t last) { return bounds_of_range(first, last); },
+        [](RangeBounds& total, const RangeBounds& chunk) { total.grow(chunk); });
   }
 
   static constexpr int kBins = Binning::kBins;
@@ -378,23 +391,13 @@ class Builder {
     return bins;
   }
 
-  /// bin() over the range, in chunks on up to `cores` cores for the large ranges at the top of
-  /// a parallel build (which are split before the subtrees can be built in parallel). Unions
-  /// and sums: the same bins however the range is cut.
+  /// bin() on up to `cores` cores.
   Bins bin_range(const Binning& binning, std::size_t begin, std::size_t end,
                  std::size_t cores) const {
-    constexpr std::size_t kChunk = std::size_t{1} << 14;
-    if (cores == 1 || end - begin < kParallelBuildSize) return bin(binning, begin, end);
-    std::vector<Bins> chunks((end - begin + kChunk - 1) / kChunk);
-    glint::detail::parallel_chunks(
-        chunks.size(), 1, cores, [&](std::size_t first, std::size_t last) {
-          for (std::size_t c = first; c < last; ++c)
-            chunks[c] = bin(binning, begin + c * kChunk, std::min(end, begin + (c + 1) * kChunk));
-        });
-    Bins bins;
-    for (const Bins& chunk : chunks)
-      bins.add(chunk);
-    return bins;
+    return in_chunks<Bins>(
+        begin, end, cores,
+        [&](std::size_t first, std::size_t last) { return bin(binning, first, last); },
+        [](Bins& total, const Bins& chunk) { total.add(chunk); });
   }
 
   /// Sweeps the bins from both ends for the plane of least SAH cost.

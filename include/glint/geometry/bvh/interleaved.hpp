@@ -13,7 +13,6 @@
 // A packet (packet.hpp) shares node visits between rays that go the same way; this shares
 // nothing. SphereBvh uses it for batches of incoherent rays (RayCoherence::incoherent).
 
-#include <array>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -49,10 +48,6 @@ namespace detail {
 
 /// One ray's traversal, stopped between two steps.
 struct SuspendedTraversal {
-  struct Pending {
-    std::uint32_t node;
-    float enter;
-  };
   Vec3 origin;
   Vec3 inverse_direction;
   float t_min = 0.0f;
@@ -62,7 +57,7 @@ struct SuspendedTraversal {
   unsigned leaves = 0, inner = 0;  ///< of `node`, once visited
   int top = 0;
   alignas(32) float enter[kWideWidth];
-  std::array<Pending, (kWideWidth - 1) * (kMaxDepth + 2)> stack;
+  TraversalStack stack;
 };
 
 }  // namespace detail
@@ -118,52 +113,21 @@ inline LaneMask traverse_interleaved(const std::vector<WideNode>& nodes,
           continue;
         }
       }
-      bool done = false;
-      for (unsigned leaves = s.leaves; leaves != 0;) {
-        const int c = nearest_slot(s.enter, leaves);
-        leaves &= ~(1u << c);
-        if (s.enter[c] > s.nearest.t) break;
-        if (!test_leaf(lane, node.child[c], node.count[c], s.nearest)) continue;
+      const auto test_lane_leaf = [&](std::uint32_t first, std::uint32_t count, SphereHit& b) {
+        return test_leaf(lane, first, count, b);
+      };
+      if (test_leaves_nearest_first<kAnyHit>(node, s.enter, s.leaves, s.nearest, test_lane_leaf)) {
         found |= LaneMask(1) << lane;
         if constexpr (kAnyHit) {
-          done = true;
-          break;
-        }
-      }
-      if (done) {
-        finish(lane);
-        continue;
-      }
-      const unsigned inner = s.inner;
-      if (inner != 0 && (inner & (inner - 1)) == 0) {
-        const int c = std::countr_zero(inner);
-        if (s.enter[c] <= s.nearest.t) {
-          go_to(s, node.child[c]);
-          continue;
-        }
-      } else if (inner != 0) {
-        const int first = nearest_slot(s.enter, inner);
-        if (s.enter[first] <= s.nearest.t) {
-          for (unsigned rest = inner & ~(1u << first); rest != 0; rest &= rest - 1) {
-            const int c = std::countr_zero(rest);
-            s.stack[std::size_t(s.top)] = {node.child[c], s.enter[c]};
-            s.top += s.enter[c] <= s.nearest.t;
-          }
-          go_to(s, node.child[first]);
-          continue;
-        }
-      }
-      for (;;) {
-        if (s.top == 0) {
           finish(lane);
-          break;
-        }
-        const detail::SuspendedTraversal::Pending pending = s.stack[std::size_t(--s.top)];
-        if (pending.enter <= s.nearest.t) {
-          go_to(s, pending.node);
-          break;
+          continue;
         }
       }
+      std::uint32_t next;
+      if (next_node(node, s.enter, s.inner, s.nearest.t, s.stack, s.top, next))
+        go_to(s, next);
+      else
+        finish(lane);
     }
   }
   return found;

@@ -144,13 +144,77 @@ inline int nearest_slot(const float (&enter)[kWideWidth], unsigned mask) {
 #endif
 }
 
+/// A node a traversal has still to visit, and where the ray enters its box.
+struct PendingNode {
+  std::uint32_t node;
+  float enter;
+};
+
+/// The nodes a traversal has still to visit: each level pushes at most kWideWidth - 1 more
+/// than it pops, and the depth is bounded.
+using TraversalStack = std::array<PendingNode, (kWideWidth - 1) * (kMaxDepth + 2)>;
+
+/// Tests the leaves `leaves` of `node` nearest first with test_leaf(first, count, nearest),
+/// until one starts beyond the best hit; returns whether one found a hit. With kAnyHit it stops
+/// at the first.
+template <bool kAnyHit, LeafTest TestLeaf>
+[[gnu::always_inline]] inline bool test_leaves_nearest_first(const WideNode& node,
+                                                             const float (&enter)[kWideWidth],
+                                                             unsigned leaves, SphereHit& nearest,
+                                                             TestLeaf& test_leaf) {
+  bool found = false;
+  while (leaves != 0) {
+    const int c = nearest_slot(enter, leaves);
+    leaves &= ~(1u << c);
+    if (enter[c] > nearest.t) break;  // and so are the farther ones
+    if (!test_leaf(node.child[c], node.count[c], nearest)) continue;
+    found = true;
+    if constexpr (kAnyHit) break;
+  }
+  return found;
+}
+
+/// The node to visit after `node`'s leaves, into `next`: the nearest of the inner children
+/// `inner` if the ray enters it before its best hit at `nearest_t`, without going through the
+/// stack (the others so entered are pushed in slot order, unsorted: once a leaf has given a hit
+/// most of them are skipped when popped whatever their order, and sorting them by entry cost
+/// 14% of the instructions per ray on a lattice of spheres, callgrind, for no fewer nodes
+/// visited on random scenes); else the next node on the stack entered before it. Returns false
+/// when there is none: the traversal is over.
+[[gnu::always_inline]] inline bool next_node(const WideNode& node, const float (&enter)[kWideWidth],
+                                             unsigned inner, float nearest_t, TraversalStack& stack,
+                                             int& top, std::uint32_t& next) {
+  if (inner != 0 && (inner & (inner - 1)) == 0) {  // one inner child: no stack
+    const int c = std::countr_zero(inner);
+    if (enter[c] <= nearest_t) {
+      next = node.child[c];
+      return true;
+    }
+  } else if (inner != 0) {
+    const int first = nearest_slot(enter, inner);
+    if (enter[first] <= nearest_t) {
+      for (unsigned rest = inner & ~(1u << first); rest != 0; rest &= rest - 1) {
+        const int c = std::countr_zero(rest);
+        stack[std::size_t(top)] = PendingNode{node.child[c], enter[c]};
+        top += enter[c] <= nearest_t;
+      }
+      next = node.child[first];
+      return true;
+    }
+  }
+  while (top > 0) {
+    const PendingNode pending = stack[std::size_t(--top)];
+    if (pending.enter <= nearest_t) {
+      next = pending.node;
+      return true;
+    }
+  }
+  return false;
+}
+
 /// Traverses `nodes` (see collapse_to_wide), calling `test_leaf` for the leaves the ray may
 /// reach before `best`; returns whether any call found a hit. With kAnyHit it returns at the
-/// first such hit. The nearest inner child entered is visited next without going through the
-/// stack; the others that the ray enters before its best hit are pushed in slot order, unsorted:
-/// once a leaf has given a hit most of them are skipped when popped whatever their order, and
-/// sorting them (an insertion sort by entry) cost 14% of the instructions per ray on a lattice
-/// of spheres (callgrind), for no fewer nodes visited on random scenes.
+/// first such hit. The next node is next_node's.
 ///
 /// Always inlined: left to itself, GCC keeps the traversal out of line in the path tracer,
 /// which changes the code it generates around the call there (which products it fuses into
@@ -162,12 +226,7 @@ template <bool kAnyHit, LeafTest TestLeaf>
   const Vec3 inverse_direction = 1.0f / ray.direction;
   // A local copy, which the compiler can keep in registers.
   SphereHit nearest = best;
-  struct Pending {
-    std::uint32_t node;
-    float enter;
-  };
-  // Each level pushes at most kWideWidth - 1 more nodes than it pops, and the depth is bounded.
-  std::array<Pending, (kWideWidth - 1) * (kMaxDepth + 2)> stack;
+  TraversalStack stack;
   int top = 0;
   std::uint32_t current = 0;
   bool found = false;
@@ -176,47 +235,16 @@ template <bool kAnyHit, LeafTest TestLeaf>
     alignas(32) float enter[kWideWidth];
     const EnteredSlots entered =
         enter_boxes(node, ray.origin, inverse_direction, ray.t_min, nearest.t, enter);
-    for (unsigned leaves = entered.leaves; leaves != 0;) {
-      const int c = nearest_slot(enter, leaves);
-      leaves &= ~(1u << c);
-      if (enter[c] > nearest.t) break;  // and so are the farther ones
-      if (!test_leaf(node.child[c], node.count[c], nearest)) continue;
+    if (test_leaves_nearest_first<kAnyHit>(node, enter, entered.leaves, nearest, test_leaf)) {
       found = true;
       if constexpr (kAnyHit) {
         best = nearest;
         return true;
       }
     }
-    unsigned inner = entered.inner;
-    if (inner != 0 && (inner & (inner - 1)) == 0) {  // one inner child: no sorting, no stack
-      const int c = std::countr_zero(inner);
-      if (enter[c] <= nearest.t) {
-        current = node.child[c];
-        continue;
-      }
-    } else if (inner != 0) {
-      const int first = nearest_slot(enter, inner);
-      if (enter[first] <= nearest.t) {
-        for (unsigned rest = inner & ~(1u << first); rest != 0; rest &= rest - 1) {
-          const int c = std::countr_zero(rest);
-          stack[std::size_t(top)] = Pending{node.child[c], enter[c]};
-          top += enter[c] <= nearest.t;
-        }
-        current = node.child[first];
-        continue;
-      }
-    }
-    // The next node on the stack that the ray may reach before its best hit.
-    for (;;) {
-      if (top == 0) {
-        best = nearest;
-        return found;
-      }
-      const Pending pending = stack[std::size_t(--top)];
-      if (pending.enter <= nearest.t) {
-        current = pending.node;
-        break;
-      }
+    if (!next_node(node, enter, entered.inner, nearest.t, stack, top, current)) {
+      best = nearest;
+      return found;
     }
   }
 }
