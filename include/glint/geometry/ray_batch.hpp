@@ -73,10 +73,14 @@ struct alignas(32) RayBatch {
   }
 };
 
-/// A closest-hit answer per lane: the hit, or t = kInfinity and kNoSphere where there is none.
+/// A closest-hit answer per lane: the hit, or t = kInfinity and kNoSphere where there is none
+/// (as every lane starts).
 struct alignas(32) HitBatch {
-  float t[RayBatch::kWidth];
-  std::uint32_t sphere[RayBatch::kWidth];
+  static_assert(RayBatch::kWidth == 8);
+  float t[RayBatch::kWidth] = {kInfinity, kInfinity, kInfinity, kInfinity,
+                               kInfinity, kInfinity, kInfinity, kInfinity};
+  std::uint32_t sphere[RayBatch::kWidth] = {kNoSphere, kNoSphere, kNoSphere, kNoSphere,
+                                            kNoSphere, kNoSphere, kNoSphere, kNoSphere};
 
   SphereHit get(int lane) const { return {t[lane], sphere[lane]}; }
   void set(int lane, const SphereHit& hit) {

@@ -75,6 +75,32 @@ inline UintLanes select(IntLanes mask, UintLanes if_true, UintLanes if_false) {
   return (if_true & m) | (if_false & ~m);
 }
 
+/// The columns of eight rows of eight floats: column j holds rows[i][j] in lane i. Eight
+/// consecutive fields of eight records in eight loads and 24 shuffles, rather than 64 scalar
+/// copies.
+inline void load_columns(const float* const (&rows)[kLaneCount],
+                         FloatLanes (&columns)[kLaneCount]) {
+  __m256 r[kLaneCount];
+  for (int i = 0; i < kLaneCount; ++i)
+    r[i] = _mm256_loadu_ps(rows[i]);
+  // Pairs of rows interleaved, then quadruples, then the halves of the register swapped in.
+  __m256 pair[kLaneCount], quad[kLaneCount];
+  for (int i = 0; i < kLaneCount; i += 2) {
+    pair[i] = _mm256_unpacklo_ps(r[i], r[i + 1]);
+    pair[i + 1] = _mm256_unpackhi_ps(r[i], r[i + 1]);
+  }
+  for (int i = 0; i < kLaneCount; i += 4) {
+    quad[i] = _mm256_shuffle_ps(pair[i], pair[i + 2], _MM_SHUFFLE(1, 0, 1, 0));
+    quad[i + 1] = _mm256_shuffle_ps(pair[i], pair[i + 2], _MM_SHUFFLE(3, 2, 3, 2));
+    quad[i + 2] = _mm256_shuffle_ps(pair[i + 1], pair[i + 3], _MM_SHUFFLE(1, 0, 1, 0));
+    quad[i + 3] = _mm256_shuffle_ps(pair[i + 1], pair[i + 3], _MM_SHUFFLE(3, 2, 3, 2));
+  }
+  for (int j = 0; j < 4; ++j) {
+    columns[j] = std::bit_cast<FloatLanes>(_mm256_permute2f128_ps(quad[j], quad[j + 4], 0x20));
+    columns[j + 4] = std::bit_cast<FloatLanes>(_mm256_permute2f128_ps(quad[j], quad[j + 4], 0x31));
+  }
+}
+
 /// bits_to_unit_float lane by lane: the top 24 bits as a float in [0, 1), exactly.
 inline FloatLanes unit_floats(UintLanes bits) {
   return __builtin_convertvector(std::bit_cast<IntLanes>(bits >> 8), FloatLanes) * 0x1p-24f;

@@ -27,17 +27,11 @@
 #include "glint/geometry/bvh/wide.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_batch.hpp"
+#include "glint/geometry/ray_batch_kernel.hpp"
 #include "glint/geometry/simd.hpp"
 
 #ifdef GLINT_AVX2
 namespace glint::bvh {
-
-/// All ones in the lanes of `mask`.
-inline __m256i lane_vector(LaneMask mask) {
-  const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-  return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(static_cast<int>(mask)), bits),
-                            bits);
-}
 
 /// Traverses `nodes` for the lanes of `active`, each starting from the hit in `best` it has to
 /// beat (see hit_to_beat; best[lane].t <= the ray's t_max) and calling `test_leaf` for the
@@ -74,13 +68,13 @@ inline LaneMask traverse_packet(const std::vector<WideNode>& nodes, const RayBat
   std::array<Pending, (kWideWidth - 1) * (kMaxDepth + 2)> stack;
   int top = 0;
   stack[std::size_t(top++)] =
-      Pending{_mm256_blendv_ps(infinity, t_min, _mm256_castsi256_ps(lane_vector(active))), 0};
+      Pending{_mm256_blendv_ps(infinity, t_min, _mm256_castsi256_ps(avx2::lane_vector(active))), 0};
   while (top > 0) {
     const Pending pending = stack[std::size_t(--top)];
     const LaneMask lanes =
         LaneMask(_mm256_movemask_ps(_mm256_cmp_ps(pending.enter, nearest_t, _CMP_LE_OQ))) & live;
     if (lanes == 0) continue;
-    const __m256 lane_ok = _mm256_castsi256_ps(lane_vector(lanes));
+    const __m256 lane_ok = _mm256_castsi256_ps(avx2::lane_vector(lanes));
     const WideNode& node = nodes[pending.node];
     // The children some lane enters, with each lane's entry and the nearest entry among them.
     __m256 enter[kWideWidth];

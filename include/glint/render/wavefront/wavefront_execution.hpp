@@ -500,53 +500,55 @@ class WavefrontExecution {
     LaneMask patterned = 0;      ///< lanes whose sphere's colour depends on the point
 
     SurfaceLanes(const Scene& scene, const HitBatch& hits, LaneMask lanes) {
-      constexpr int kFields = 20;
-      alignas(32) float field[kFields][kLaneCount] = {};
+      // The twenty floats read here lead SurfaceProperties: the material's seventeen, the
+      // centre and ior_outside. They are loaded in three blocks of eight consecutive floats
+      // (the last two overlapping) for the eight lanes at once; a lane without a hit reads
+      // zeros.
+      static constexpr float kNoSurface[kRecordFloats] = {};
+      const float* record[kLaneCount];
+      for (const float*& r : record)
+        r = kNoSurface;
       alignas(32) std::int32_t fully[kLaneCount] = {};
       for_each_lane(lanes, [&](int i) {
         const SurfaceProperties& s = scene.surface(hits.sphere[i]);
-        const Material& m = s.material;
-        const float values[kFields] = {s.center.x,
-                                       s.center.y,
-                                       s.center.z,
-                                       m.diffuse,
-                                       m.mirror,
-                                       m.transparent,
-                                       m.ior,
-                                       s.ior_outside,
-                                       m.diffuse_color.x,
-                                       m.diffuse_color.y,
-                                       m.diffuse_color.z,
-                                       m.mirror_color.x,
-                                       m.mirror_color.y,
-                                       m.mirror_color.z,
-                                       m.transparent_color.x,
-                                       m.transparent_color.y,
-                                       m.transparent_color.z,
-                                       m.emission.x,
-                                       m.emission.y,
-                                       m.emission.z};
-        for (int k = 0; k < kFields; ++k)
-          field[k][i] = values[k];
+        record[i] = reinterpret_cast<const float*>(&s);
         fully[i] = s.fully_transparent ? -1 : 0;
         if (s.emitter != kNotAnEmitter) emitters |= LaneMask(1) << i;
         if (s.shading != ShadingKind::uniform) patterned |= LaneMask(1) << i;
       });
-      const auto vec = [&](int k) {
-        return Vec3Lanes{load_lanes(field[k]), load_lanes(field[k + 1]), load_lanes(field[k + 2])};
+      FloatLanes first[kLaneCount], second[kLaneCount], last[kLaneCount];
+      const auto load_block = [&](int offset, FloatLanes(&columns)[kLaneCount]) {
+        const float* rows[kLaneCount];
+        for (int i = 0; i < kLaneCount; ++i)
+          rows[i] = record[i] + offset;
+        load_columns(rows, columns);
       };
-      center = vec(0);
-      diffuse = load_lanes(field[3]);
-      mirror = load_lanes(field[4]);
-      transparent = load_lanes(field[5]);
-      ior = load_lanes(field[6]);
-      ior_outside = load_lanes(field[7]);
-      diffuse_color = vec(8);
-      mirror_color = vec(11);
-      transparent_color = vec(14);
-      emission = vec(17);
+      load_block(0, first);
+      load_block(8, second);
+      load_block(kRecordFloats - 8, last);
+      diffuse = first[0];
+      diffuse_color = {first[1], first[2], first[3]};
+      mirror = first[4];
+      mirror_color = {first[5], first[6], first[7]};
+      transparent = second[0];
+      transparent_color = {second[1], second[2], second[3]};
+      ior = second[4];
+      emission = {second[5], second[6], second[7]};
+      center = {last[4], last[5], last[6]};
+      ior_outside = last[7];
       fully_transparent = load_lanes(fully);
     }
+
+   private:
+    static constexpr int kRecordFloats = 20;
+    // The layout the loads above read.
+    static_assert(offsetof(SurfaceProperties, material) == 0 && offsetof(Material, diffuse) == 0 &&
+                  offsetof(Material, diffuse_color) == 4 && offsetof(Material, mirror) == 16 &&
+                  offsetof(Material, mirror_color) == 20 && offsetof(Material, transparent) == 32 &&
+                  offsetof(Material, transparent_color) == 36 && offsetof(Material, ior) == 48 &&
+                  offsetof(Material, emission) == 52 && offsetof(SurfaceProperties, center) == 64 &&
+                  offsetof(SurfaceProperties, ior_outside) == 76 &&
+                  sizeof(SurfaceProperties) >= kRecordFloats * sizeof(float));
   };
 
   /// shade_path for the paths base .. base+7 of `lanes` at once: the same steps and the same
