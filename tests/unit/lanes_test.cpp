@@ -123,6 +123,29 @@ TEST_CASE("lane min, max, select and copysign follow the scalar rules, NaN and -
   CHECK(glint::lane_bits(a != a) == 0b00010100u);
 }
 
+TEST_CASE("load_columns turns eight rows of eight floats, anywhere in memory, into columns",
+          "[lanes][unit]") {
+  // Rows scattered through a larger array, in no order and one of them twice, with NaN, -0
+  // and infinity among the values, which a transpose must carry bit for bit.
+  std::vector<float> memory(200);
+  for (std::size_t k = 0; k < memory.size(); ++k)
+    memory[k] = float(k) + 0.25f;
+  memory[21] = kNaN;
+  memory[42] = -0.0f;
+  memory[99] = -kInf;
+  const std::size_t starts[kLaneCount] = {40, 3, 120, 17, 40, 77, 91, 150};
+  const float* rows[kLaneCount];
+  for (int i = 0; i < kLaneCount; ++i)
+    rows[i] = memory.data() + starts[i];
+  FloatLanes columns[kLaneCount];
+  glint::load_columns(rows, columns);
+  for (int j = 0; j < kLaneCount; ++j)
+    for (int i = 0; i < kLaneCount; ++i) {
+      INFO("column " << j << ", lane " << i);
+      CHECK(same_bits(columns[j][i], memory[starts[i] + std::size_t(j)]));
+    }
+}
+
 TEST_CASE("lane-wise warps and frames agree with the scalar ones", "[lanes][unit]") {
   glint::Pcg32 rng(7, 11);
   for (int round = 0; round < 4096; ++round) {
