@@ -28,13 +28,6 @@ inline RayLanes ray_lanes(const RayBatch& rays) {
                   _mm256_load_si256(reinterpret_cast<const __m256i*>(rays.origin_sphere)));
 }
 
-/// All ones in the lanes of `mask`.
-inline __m256i lane_vector(LaneMask mask) {
-  const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-  return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(static_cast<int>(mask)), bits),
-                            bits);
-}
-
 /// The hits of a HitBatch, one per lane.
 inline HitLanes hit_lanes(const HitBatch& hits) {
   return HitLanes(_mm256_load_ps(hits.t),
@@ -48,26 +41,6 @@ inline void store_lanes(const HitLanes& lanes, LaneMask mask, HitBatch& hits) {
                   _mm256_blendv_ps(_mm256_load_ps(hits.t), lanes.t, _mm256_castsi256_ps(in_mask)));
   auto* sphere = reinterpret_cast<__m256i*>(hits.sphere);
   _mm256_store_si256(sphere, _mm256_blendv_epi8(_mm256_load_si256(sphere), lanes.sphere, in_mask));
-}
-
-/// Per-lane hits from an array of eight.
-inline HitLanes hit_lanes(const SphereHit (&hits)[RayBatch::kWidth]) {
-  alignas(32) float t[RayBatch::kWidth];
-  alignas(32) std::uint32_t sphere[RayBatch::kWidth];
-  for (int lane = 0; lane < RayBatch::kWidth; ++lane) {
-    t[lane] = hits[lane].t;
-    sphere[lane] = hits[lane].sphere;
-  }
-  return HitLanes(_mm256_load_ps(t), _mm256_load_si256(reinterpret_cast<const __m256i*>(sphere)));
-}
-
-/// Copies the lanes of `mask` of `lanes` into `hits`.
-inline void store_lanes(const HitLanes& lanes, LaneMask mask, SphereHit (&hits)[RayBatch::kWidth]) {
-  alignas(32) float t[RayBatch::kWidth];
-  alignas(32) std::uint32_t sphere[RayBatch::kWidth];
-  _mm256_store_ps(t, lanes.t);
-  _mm256_store_si256(reinterpret_cast<__m256i*>(sphere), lanes.sphere);
-  for_each_lane(mask, [&](int lane) { hits[lane] = {t[lane], sphere[lane]}; });
 }
 
 /// test_lanes for every sphere of `spheres`, broadcast in turn; returns the lanes whose best

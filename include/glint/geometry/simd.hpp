@@ -21,3 +21,18 @@
 #if defined(GLINT_AVX2) || defined(GLINT_SSE41)
 #include <immintrin.h>
 #endif
+
+#if defined(GLINT_AVX2)
+#include <cstdint>
+
+namespace glint::avx2 {
+
+/// All ones in the lanes i of an AVX register for which bit i of `mask` is set.
+inline __m256i lane_vector(std::uint32_t mask) {
+  const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(static_cast<int>(mask)), bits),
+                            bits);
+}
+
+}  // namespace glint::avx2
+#endif

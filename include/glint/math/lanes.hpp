@@ -58,8 +58,7 @@ inline std::uint32_t lane_bits(IntLanes mask) {
 }
 /// The mask with lane i true where bit i of `bits` is set.
 inline IntLanes lanes_of_bits(std::uint32_t bits) {
-  const IntLanes bit = {1, 2, 4, 8, 16, 32, 64, 128};
-  return (broadcast(std::int32_t(bits)) & bit) != 0;
+  return std::bit_cast<IntLanes>(avx2::lane_vector(bits));
 }
 
 /// `if_true` where `mask` is true, `if_false` elsewhere.

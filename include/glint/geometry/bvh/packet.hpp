@@ -27,7 +27,6 @@
 #include "glint/geometry/bvh/wide.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_batch.hpp"
-#include "glint/geometry/ray_batch_kernel.hpp"
 #include "glint/geometry/simd.hpp"
 
 #ifdef GLINT_AVX2

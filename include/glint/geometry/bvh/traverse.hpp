@@ -123,9 +123,7 @@ inline EnteredSlots enter_boxes(const WideNode& node, const Vec3& origin,
 inline int nearest_slot(const float (&enter)[kWideWidth], unsigned mask) {
   if ((mask & (mask - 1)) == 0) return std::countr_zero(mask);
 #if defined(GLINT_AVX2)
-  const __m256i lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-  const __m256 in_mask = _mm256_castsi256_ps(_mm256_cmpeq_epi32(
-      _mm256_and_si256(_mm256_set1_epi32(static_cast<int>(mask)), lane_bits), lane_bits));
+  const __m256 in_mask = _mm256_castsi256_ps(avx2::lane_vector(mask));
   const __m256 entries =
       _mm256_blendv_ps(_mm256_set1_ps(kInfinity), _mm256_loadu_ps(enter), in_mask);
   __m256 smallest = _mm256_min_ps(entries, _mm256_permute_ps(entries, 0b10110001));
