@@ -146,6 +146,53 @@ TEST_CASE("load_columns turns eight rows of eight floats, anywhere in memory, in
     }
 }
 
+TEST_CASE(
+    "packing_order and appending_order move the lanes of a mask, in order, where a queue "
+    "continues",
+    "[lanes][unit]") {
+  const IntLanes values = glint::lane_indices() * 10 + 3;
+  for (std::uint32_t mask = 0; mask < 256; ++mask) {
+    std::vector<int> chosen;  // the lanes of the mask, lowest first
+    for (int lane = 0; lane < kLaneCount; ++lane)
+      if ((mask >> lane) & 1u) chosen.push_back(lane);
+    const IntLanes packed = glint::permute(values, glint::packing_order(mask));
+    for (std::size_t k = 0; k < chosen.size(); ++k) {
+      INFO("mask " << mask << ", entry " << k);
+      CHECK(packed[k] == chosen[k] * 10 + 3);
+    }
+    for (int at = 0; at < kLaneCount; ++at) {
+      const IntLanes appended = glint::permute(values, glint::appending_order(mask, at));
+      for (std::size_t k = 0; k < chosen.size(); ++k) {
+        INFO("mask " << mask << ", at " << at << ", entry " << k);
+        CHECK(appended[(std::size_t(at) + k) % kLaneCount] == chosen[k] * 10 + 3);
+      }
+    }
+  }
+  // Floats move bit for bit.
+  const float float_values[kLaneCount] = {kNaN, -0.0f, 1.5f, kInf, -kInf, 0.0f, 2.0f, -3.0f};
+  const FloatLanes moved =
+      glint::permute(lanes_of(float_values), glint::packing_order(0b11110000u));
+  for (int k = 0; k < 4; ++k)
+    CHECK(same_bits(moved[k], float_values[k + 4]));
+}
+
+TEST_CASE("Uint64Lanes gives each lane's low and high 32 bits", "[lanes][unit]") {
+  glint::Pcg32 rng(3, 5);
+  for (int round = 0; round < 1000; ++round) {
+    glint::Uint64Lanes v = glint::Uint64Lanes::broadcast(0);
+    std::uint64_t expected[kLaneCount];
+    for (int i = 0; i < kLaneCount; ++i) {
+      expected[i] = std::uint64_t(rng.next_u32()) << 32 | rng.next_u32();
+      v.set_lane(i, expected[i]);
+    }
+    const glint::UintLanes low = v.low_bits(), high = v.high_bits();
+    for (int i = 0; i < kLaneCount; ++i) {
+      CHECK(low[i] == std::uint32_t(expected[i]));
+      CHECK(high[i] == std::uint32_t(expected[i] >> 32));
+    }
+  }
+}
+
 TEST_CASE("lane-wise warps and frames agree with the scalar ones", "[lanes][unit]") {
   glint::Pcg32 rng(7, 11);
   for (int round = 0; round < 4096; ++round) {

@@ -100,6 +100,47 @@ inline void load_columns(const float* const (&rows)[kLaneCount],
   }
 }
 
+/// Lane j of the result is lane order[j] of `v` (order's lanes in 0 .. 7).
+inline FloatLanes permute(FloatLanes v, IntLanes order) {
+  return std::bit_cast<FloatLanes>(_mm256_permutevar8x32_ps(__m256(v), __m256i(order)));
+}
+inline IntLanes permute(IntLanes v, IntLanes order) {
+  return std::bit_cast<IntLanes>(_mm256_permutevar8x32_epi32(__m256i(v), __m256i(order)));
+}
+
+/// 0, 1, ... 7: each lane's index.
+inline IntLanes lane_indices() {
+  return IntLanes{0, 1, 2, 3, 4, 5, 6, 7};
+}
+
+/// The order that packs the lanes of `mask` (bit i for lane i) into the lowest lanes, lowest
+/// first: permute(v, packing_order(mask)) holds them in lanes 0 .. popcount(mask)-1 (the
+/// other lanes are unspecified). Appending eight paths' queued rays to a queue lane-wise, in
+/// the order a loop over the lanes would append them.
+inline IntLanes packing_order(std::uint32_t mask) {
+  // For each of the 256 masks, the indices of its set bits, one per byte, lowest first.
+  static constexpr auto kOrders = [] {
+    struct Table {
+      std::uint64_t order[256];
+    } table{};
+    for (std::uint32_t m = 0; m < 256; ++m) {
+      int n = 0;
+      for (std::uint32_t lane = 0; lane < 8; ++lane)
+        if (m >> lane & 1u) table.order[m] |= std::uint64_t(lane) << (8 * n++);
+    }
+    return table;
+  }();
+  const __m128i bytes = _mm_cvtsi64_si128(std::int64_t(kOrders.order[mask & 0xffu]));
+  return std::bit_cast<IntLanes>(_mm256_cvtepu8_epi32(bytes));
+}
+
+/// packing_order followed by a rotation by `at` lanes: the lanes of `mask`, lowest first, in
+/// lanes at, at+1, ... (mod 8), where a queue of blocks of eight whose last block holds `at`
+/// entries continues.
+inline IntLanes appending_order(std::uint32_t mask, int at) {
+  return permute(packing_order(mask), (lane_indices() - at) & 7);
+}
+
 /// bits_to_unit_float lane by lane: the top 24 bits as a float in [0, 1), exactly.
 inline FloatLanes unit_floats(UintLanes bits) {
   return __builtin_convertvector(std::bit_cast<IntLanes>(bits >> 8), FloatLanes) * 0x1p-24f;
@@ -195,13 +236,26 @@ struct Uint64Lanes {
   }
   /// The low 32 bits of each lane.
   UintLanes low_bits() const {
+#if defined(__AVX512VL__)
     using Four = std::uint32_t __attribute__((vector_size(16)));
     const Four a = __builtin_convertvector(low, Four);
     const Four b = __builtin_convertvector(high, Four);
     return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
+#else
+    // Without AVX-512's narrowing moves, GCC builds this from fifteen instructions; two do it:
+    // the even 32-bit words of both halves, then their 64-bit pairs in lane order.
+    const __m256 words = _mm256_shuffle_ps(_mm256_castsi256_ps(__m256i(low)),
+                                           _mm256_castsi256_ps(__m256i(high)), 0b10'00'10'00);
+    return std::bit_cast<UintLanes>(
+        _mm256_permute4x64_epi64(_mm256_castps_si256(words), 0b11'01'10'00));
+#endif
   }
-  UintLanes high_bits() const { return (*this >> 32).low_bits(); }
-  std::uint64_t lane(int i) const { return i < 4 ? low[i] : high[i - 4]; }
+  UintLanes high_bits() const {
+    return (*this >> 32).low_bits();
+  }
+  std::uint64_t lane(int i) const {
+    return i < 4 ? low[i] : high[i - 4];
+  }
   void set_lane(int i, std::uint64_t value) {
     if (i < 4)
       low[i] = value;

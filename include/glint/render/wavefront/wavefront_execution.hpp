@@ -180,11 +180,11 @@ class WavefrontExecution {
           pending(kPaths),
           ends(kPaths),
           shadow_rays(kShadowQueue / RayBatch::kWidth),
-          shadow_owner(kShadowQueue),
-          shadow_irradiance(kShadowQueue),
+          shadow_owner(kShadowQueue + RayBatch::kWidth),
+          shadow_irradiance(kShadowQueue + RayBatch::kWidth),
           emitter_rays(kPaths / RayBatch::kWidth),
-          emitter_owner(kPaths),
-          emitter_sphere(kPaths),
+          emitter_owner(kPaths + RayBatch::kWidth),
+          emitter_sphere(kPaths + RayBatch::kWidth),
           results(kWindow),
           result_ready(kWindow) {}
 
@@ -208,12 +208,16 @@ class WavefrontExecution {
     ColorColumns albedo;
     ColorColumns irradiance;
     ColorColumns emitter_light;
-    std::vector<std::uint8_t> pending;  ///< kDirectLight | kEmitterRay | kEmitterVisible
-    std::vector<std::uint8_t> ends;     ///< the path ends after this bounce
+    // A lane of SIMD flags per path: eight paths' flags load and store as one register.
+    detail::AlignedArray<std::int32_t> pending;  ///< kDirectLight | kEmitterRay | kEmitterVisible
+    detail::AlignedArray<std::int32_t> ends;     ///< 1: the path ends after this bounce
 
+    // The queues of rays to trace, and for each ray its path and what it brings. The arrays
+    // beside the rays have eight entries to spare, which the lane-wise appends write past the
+    // last one.
     detail::AlignedArray<RayBatch> shadow_rays;
     std::vector<std::uint32_t> shadow_owner;
-    std::vector<Color> shadow_irradiance;
+    ColorColumns shadow_irradiance;
     int shadow_count = 0;
 
     detail::AlignedArray<RayBatch> emitter_rays;
@@ -254,7 +258,7 @@ class WavefrontExecution {
   }
 
  private:
-  static constexpr std::uint8_t kDirectLight = 1, kEmitterRay = 2, kEmitterVisible = 4;
+  static constexpr std::int32_t kDirectLight = 1, kEmitterRay = 2, kEmitterVisible = 4;
 
   /// Where sample number `n` of a tile's work belongs: pixel by pixel, row by row, and within
   /// a pixel samples first, first + 1, ...
@@ -567,10 +571,10 @@ class WavefrontExecution {
     Vec3Lanes radiance = state.radiance.lanes(base);
     radiance = select(hit_mask, radiance,
                       radiance + throughput * Vec3Lanes::broadcast(context_.background()));
-    for (int i = 0; i < kLaneCount; ++i) {
-      state.pending[std::size_t(base + i)] = 0;
-      state.ends[std::size_t(base + i)] = 1;
-    }
+    std::int32_t* const pending = &state.pending[std::size_t(base)];
+    std::int32_t* const ends = &state.ends[std::size_t(base)];
+    store_lanes(pending, broadcast(0));
+    store_lanes(ends, broadcast(1));
     if (hits == 0) {
       state.radiance.set_lanes(base, radiance);
       return;
@@ -625,8 +629,7 @@ class WavefrontExecution {
     if (diffuse_lanes != 0) {
       state.albedo.set_lanes(base, albedo);
       state.irradiance.set_lanes(base, Vec3Lanes::broadcast(Color(0.0f)));
-      for_each_lane(diffuse_lanes,
-                    [&](int i) { state.pending[std::size_t(base + i)] = kDirectLight; });
+      store_lanes(pending, has_diffuse & kDirectLight);
       for (const PointLight& light : scene_.lights()) {
         const Vec3Lanes to_light = Vec3Lanes::broadcast(light.position) - point;
         const FloatLanes distance2 = dot(to_light, to_light);
@@ -637,18 +640,15 @@ class WavefrontExecution {
         if (lit == 0) continue;
         const Vec3Lanes irradiance =
             ((light.intensity * cosine) / distance2) * Vec3Lanes::broadcast(light.color);
-        const IntLanes heads_in = dot(toward, normal) < 0.0f;
-        for_each_lane(lit, [&](int i) {
-          ++counters.rays;
-          queue_shadow_ray(state, base + i,
-                           ray_leaving_sphere(point.lane(i), toward.lane(i), hit.sphere[i],
-                                              heads_in[i] != 0, distance[i]),
-                           irradiance.lane(i));
-        });
+        counters.rays += std::uint64_t(std::popcount(lit));
+        queue_shadow_rays(
+            state, base, lit,
+            {point, toward, broadcast(0.0f), distance, sphere, dot(toward, normal) < 0.0f},
+            irradiance);
       }
       if constexpr (kSamplesEmitters)
         sample_emitters_lanes(state, base, diffuse_lanes & lane_bits(depth < context_.max_depth()),
-                              hit, point, normal, facing, from_inside, albedo,
+                              sphere, point, normal, facing, from_inside, albedo,
                               surface.diffuse / total, draws, counters);
     }
 
@@ -719,7 +719,7 @@ class WavefrontExecution {
     set_rays(state.rays[block], continues,
              {point, next_direction, broadcast(0.0f), broadcast(kInfinity), sphere,
               dot(next_direction, normal) < 0.0f});
-    for_each_lane(going_on, [&](int i) { state.ends[std::size_t(base + i)] = 0; });
+    store_lanes(ends, ~continues & 1);
   }
 
   /// Eight rays in SIMD lanes (Ray's fields).
@@ -754,22 +754,22 @@ class WavefrontExecution {
 
   /// The emitter sample of PathContext::emitter_ray for the lanes of `lanes` (diffuse hits
   /// from which a bounce may follow): the draws lane by lane, the rest in SIMD lanes.
-  void sample_emitters_lanes(ThreadState& state, int base, LaneMask lanes, const HitBatch& hit,
+  void sample_emitters_lanes(ThreadState& state, int base, LaneMask lanes, IntLanes hit_sphere,
                              const Vec3Lanes& point, const Vec3Lanes& normal,
                              const Vec3Lanes& facing, IntLanes from_inside, const Vec3Lanes& albedo,
                              FloatLanes diffuse_probability, SamplerBlock& draws,
                              TraceCounters& counters) const {
     if (lanes == 0) return;
-    for_each_lane(lanes, [&](int i) { state.pending[std::size_t(base + i)] |= kEmitterRay; });
+    std::int32_t* const pending = &state.pending[std::size_t(base)];
+    store_lanes(pending, load_lanes(pending) | (lanes_of_bits(lanes) & kEmitterRay));
     state.emitter_light.set_lanes(base, Vec3Lanes::broadcast(Color(0.0f)));
     const EmitterTable& emitters = scene_.emitters();
     if (emitters.empty()) return;
     Vec3Lanes center{}, radiance{};
     FloatLanes radius{}, probability{};
+    IntLanes emitter_sphere = broadcast(std::int32_t(kNoSphere));
     const FloatLanes u_choice = draws.next_1d(lanes);
     const Vec2Lanes u = draws.next_2d(lanes);
-    LaneMask on_emitter = 0;
-    std::uint32_t emitter_sphere[kLaneCount] = {};
     for_each_lane(lanes, [&](int i) {
       const EmitterTable::Choice choice = emitters.choose(u_choice[i]);
       const SphereEmitter& emitter = emitters[choice.index];
@@ -777,9 +777,9 @@ class WavefrontExecution {
       radiance.set_lane(i, emitter.radiance);
       radius[i] = emitter.radius;
       probability[i] = choice.probability;
-      emitter_sphere[i] = emitter.sphere;
-      if (emitter.sphere == hit.sphere[i]) on_emitter |= LaneMask(1) << i;
+      emitter_sphere[i] = std::int32_t(emitter.sphere);
     });
+    const LaneMask on_emitter = lanes & lane_bits(emitter_sphere == hit_sphere);
     // EmitterView: from outside the cone; from inside (or from the emitter's inner surface)
     // a point on its area; from its outer surface, nothing.
     const Vec3Lanes to_center = center - point;
@@ -825,14 +825,86 @@ class WavefrontExecution {
     const Vec3Lanes light = reflected * radiance * (weight / light_pdf);
     state.emitter_light.set_lanes(
         base, select(lanes_of_bits(sampled), light, Vec3Lanes::broadcast(Color(0.0f))));
-    const IntLanes heads_in = dot(toward, normal) < 0.0f;
-    for_each_lane(sampled, [&](int i) {
-      ++counters.rays;
-      queue_emitter_ray(state, base + i,
-                        ray_leaving_sphere(point.lane(i), toward.lane(i), hit.sphere[i],
-                                           heads_in[i] != 0, kInfinity),
-                        emitter_sphere[i]);
-    });
+    counters.rays += std::uint64_t(std::popcount(sampled));
+    queue_emitter_rays(state, base, sampled,
+                       {point, toward, broadcast(0.0f), broadcast(kInfinity), hit_sphere,
+                        dot(toward, normal) < 0.0f},
+                       emitter_sphere);
+  }
+
+  /// Appends the rays of lanes `lanes` of `rays` to the queue `blocks`, which holds `count`
+  /// rays, in lane order: what RayBatch::set would write lane by lane, a column at a time. The
+  /// queue has room for them.
+  static void append_rays(RayBatch* blocks, int count, LaneMask lanes, const RayLanes& rays) {
+    const int at = count % RayBatch::kWidth;
+    const int end = at + std::popcount(lanes);
+    RayBatch& last = blocks[count / RayBatch::kWidth];
+    RayBatch* const next = end > RayBatch::kWidth ? &last + 1 : nullptr;
+    const IntLanes order = appending_order(lanes, at);
+    const IntLanes lane = lane_indices();
+    const IntLanes into_last = (lane >= at) & (lane < end);
+    const IntLanes into_next = lane < end - RayBatch::kWidth;
+    const auto append = [&](float(RayBatch::*column)[RayBatch::kWidth], FloatLanes value) {
+      value = permute(value, order);
+      store_lanes(last.*column, select(into_last, value, load_lanes(last.*column)));
+      if (next) store_lanes(next->*column, select(into_next, value, load_lanes(next->*column)));
+    };
+    append(&RayBatch::origin_x, rays.origin.x);
+    append(&RayBatch::origin_y, rays.origin.y);
+    append(&RayBatch::origin_z, rays.origin.z);
+    append(&RayBatch::direction_x, rays.direction.x);
+    append(&RayBatch::direction_y, rays.direction.y);
+    append(&RayBatch::direction_z, rays.direction.z);
+    append(&RayBatch::t_min, rays.t_min);
+    append(&RayBatch::t_max, rays.t_max);
+    const auto append_ids = [&](RayBatch& batch, IntLanes into, IntLanes value) {
+      IntLanes ids;
+      std::memcpy(&ids, batch.origin_sphere, sizeof ids);
+      ids = select(into, value, ids);
+      std::memcpy(batch.origin_sphere, &ids, sizeof ids);
+    };
+    const IntLanes origin_sphere = permute(rays.origin_sphere, order);
+    append_ids(last, into_last, origin_sphere);
+    if (next) append_ids(*next, into_next, origin_sphere);
+    const LaneMask heads_in = lane_bits(permute(rays.heads_into_origin_sphere, order));
+    const auto merge = [&](RayBatch& batch, IntLanes into) {
+      const LaneMask bits = lane_bits(into);
+      batch.heads_into_origin_sphere = (batch.heads_into_origin_sphere & ~bits) | (heads_in & bits);
+    };
+    merge(last, into_last);
+    if (next) merge(*next, into_next);
+  }
+
+  /// Stores the lanes of `lanes` of `values`, lowest first, at to[0], to[1], ... (and
+  /// unspecified values up to to[7]).
+  template <typename T>
+  static void append_values(T* to, LaneMask lanes, IntLanes values) {
+    static_assert(sizeof(T) == sizeof(std::int32_t));
+    const IntLanes packed = permute(values, packing_order(lanes));
+    std::memcpy(to, &packed, sizeof packed);
+  }
+
+  /// queue_shadow_ray for the lanes of `lanes` of paths base .. base+7, in lane order.
+  void queue_shadow_rays(ThreadState& state, int base, LaneMask lanes, const RayLanes& rays,
+                         const Vec3Lanes& light) const {
+    if (state.shadow_count + std::popcount(lanes) > kShadowQueue) trace_shadow_rays(state);
+    const int q = state.shadow_count;
+    append_rays(state.shadow_rays.data(), q, lanes, rays);
+    append_values(&state.shadow_owner[std::size_t(q)], lanes, base + lane_indices());
+    const IntLanes order = packing_order(lanes);
+    state.shadow_irradiance.set_lanes(
+        q, {permute(light.x, order), permute(light.y, order), permute(light.z, order)});
+    state.shadow_count += std::popcount(lanes);
+  }
+
+  /// queue_emitter_ray for the lanes of `lanes` of paths base .. base+7, in lane order.
+  static void queue_emitter_rays(ThreadState& state, int base, LaneMask lanes, const RayLanes& rays,
+                                 IntLanes emitter_sphere) {
+    const int q = state.emitter_count;
+    append_rays(state.emitter_rays.data(), q, lanes, rays);
+    append_values(&state.emitter_owner[std::size_t(q)], lanes, base + lane_indices());
+    append_values(&state.emitter_sphere[std::size_t(q)], lanes, emitter_sphere);
+    state.emitter_count += std::popcount(lanes);
   }
 
 #endif  // GLINT_AVX2
@@ -842,7 +914,7 @@ class WavefrontExecution {
     const int q = state.shadow_count++;
     state.shadow_rays[std::size_t(q / RayBatch::kWidth)].set(q % RayBatch::kWidth, ray);
     state.shadow_owner[std::size_t(q)] = std::uint32_t(p);
-    state.shadow_irradiance[std::size_t(q)] = light;
+    state.shadow_irradiance.set(q, light);
   }
 
   static void queue_emitter_ray(ThreadState& state, int p, const Ray& ray, std::uint32_t sphere) {
@@ -863,7 +935,8 @@ class WavefrontExecution {
       for_each_lane(active & ~blocked, [&](int lane) {
         const auto q = std::size_t(base + lane);
         const auto owner = int(state.shadow_owner[q]);
-        state.irradiance.set(owner, state.irradiance.get(owner) + state.shadow_irradiance[q]);
+        state.irradiance.set(owner,
+                             state.irradiance.get(owner) + state.shadow_irradiance.get(int(q)));
       });
     }
     state.shadow_count = 0;
@@ -910,7 +983,7 @@ class WavefrontExecution {
   }
 
   static void gather_path(ThreadState& state, int p) {
-    const std::uint8_t pending = state.pending[std::size_t(p)];
+    const std::int32_t pending = state.pending[std::size_t(p)];
     Color radiance = state.radiance.get(p);
     if (pending & kDirectLight)
       radiance += (state.shading_throughput.get(p) * state.albedo.get(p)) *
@@ -925,9 +998,7 @@ class WavefrontExecution {
   /// gather_path for paths base .. base+7 (those beyond the live ones are left as they are:
   /// their pending flags are clear).
   static void gather_lanes(ThreadState& state, int base) {
-    IntLanes pending{};
-    for (int i = 0; i < kLaneCount; ++i)
-      pending[i] = state.pending[std::size_t(base + i)];
+    const IntLanes pending = load_lanes(&state.pending[std::size_t(base)]);
     if (lane_bits(pending != 0) == 0) return;
     const Vec3Lanes zero = Vec3Lanes::broadcast(Color(0.0f));
     const Vec3Lanes throughput = state.shading_throughput.lanes(base);
