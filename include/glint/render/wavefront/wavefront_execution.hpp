@@ -504,21 +504,17 @@ class WavefrontExecution {
     LaneMask patterned = 0;      ///< lanes whose sphere's colour depends on the point
 
     SurfaceLanes(const Scene& scene, const HitBatch& hits, LaneMask lanes) {
-      // The twenty floats read here lead SurfaceProperties: the material's seventeen, the
-      // centre and ior_outside. They are loaded in three blocks of eight consecutive floats
-      // (the last two overlapping) for the eight lanes at once; a lane without a hit reads
-      // zeros.
-      static constexpr float kNoSurface[kRecordFloats] = {};
+      // The 88 bytes of SurfaceProperties, read as 22 words: the material's seventeen floats,
+      // the centre, ior_outside, a word whose two low bytes are the shading kind and
+      // fully_transparent (and whose two high bytes are padding), and the emitter's index.
+      // They are loaded in three blocks of eight consecutive words (the last two overlapping)
+      // for the eight lanes at once; a lane without a hit reads zeros.
+      static constexpr float kNoSurface[kRecordWords] = {};
       const float* record[kLaneCount];
       for (const float*& r : record)
         r = kNoSurface;
-      alignas(32) std::int32_t fully[kLaneCount] = {};
       for_each_lane(lanes, [&](int i) {
-        const SurfaceProperties& s = scene.surface(hits.sphere[i]);
-        record[i] = reinterpret_cast<const float*>(&s);
-        fully[i] = s.fully_transparent ? -1 : 0;
-        if (s.emitter != kNotAnEmitter) emitters |= LaneMask(1) << i;
-        if (s.shading != ShadingKind::uniform) patterned |= LaneMask(1) << i;
+        record[i] = reinterpret_cast<const float*>(&scene.surface(hits.sphere[i]));
       });
       FloatLanes first[kLaneCount], second[kLaneCount], last[kLaneCount];
       const auto load_block = [&](int offset, FloatLanes(&columns)[kLaneCount]) {
@@ -529,7 +525,7 @@ class WavefrontExecution {
       };
       load_block(0, first);
       load_block(8, second);
-      load_block(kRecordFloats - 8, last);
+      load_block(kRecordWords - 8, last);
       diffuse = first[0];
       diffuse_color = {first[1], first[2], first[3]};
       mirror = first[4];
@@ -538,13 +534,17 @@ class WavefrontExecution {
       transparent_color = {second[1], second[2], second[3]};
       ior = second[4];
       emission = {second[5], second[6], second[7]};
-      center = {last[4], last[5], last[6]};
-      ior_outside = last[7];
-      fully_transparent = load_lanes(fully);
+      center = {last[2], last[3], last[4]};
+      ior_outside = last[5];
+      const auto flags = std::bit_cast<IntLanes>(last[6]);
+      const auto emitter = std::bit_cast<IntLanes>(last[7]);
+      patterned = lanes & lane_bits((flags & 0xff) != std::int32_t(ShadingKind::uniform));
+      fully_transparent = (flags & 0xff00) != 0;
+      emitters = lanes & lane_bits(emitter != std::int32_t(kNotAnEmitter));
     }
 
    private:
-    static constexpr int kRecordFloats = 20;
+    static constexpr int kRecordWords = 22;
     // The layout the loads above read.
     static_assert(offsetof(SurfaceProperties, material) == 0 && offsetof(Material, diffuse) == 0 &&
                   offsetof(Material, diffuse_color) == 4 && offsetof(Material, mirror) == 16 &&
@@ -552,7 +552,10 @@ class WavefrontExecution {
                   offsetof(Material, transparent_color) == 36 && offsetof(Material, ior) == 48 &&
                   offsetof(Material, emission) == 52 && offsetof(SurfaceProperties, center) == 64 &&
                   offsetof(SurfaceProperties, ior_outside) == 76 &&
-                  sizeof(SurfaceProperties) >= kRecordFloats * sizeof(float));
+                  offsetof(SurfaceProperties, shading) == 80 && sizeof(ShadingKind) == 1 &&
+                  offsetof(SurfaceProperties, fully_transparent) == 81 && sizeof(bool) == 1 &&
+                  offsetof(SurfaceProperties, emitter) == 84 &&
+                  sizeof(SurfaceProperties) == kRecordWords * sizeof(float));
   };
 
   /// shade_path for the paths base .. base+7 of `lanes` at once: the same steps and the same
@@ -707,9 +710,12 @@ class WavefrontExecution {
     if constexpr (kSamplesEmitters) {
       const FloatLanes pdf =
           C::diffuse_sampling::pdf(diffuse_sample.local_direction.z) * (surface.diffuse / total);
-      for_each_lane(going_on, [&](int i) {
-        state.from[std::size_t(base + i)] = BounceOrigin{choose_diffuse[i] ? pdf[i] : 0.0f};
-      });
+      // The eight paths' BounceOrigins (a float each) as one register.
+      static_assert(sizeof(Origin) == sizeof(float) && std::is_trivially_copyable_v<Origin>);
+      FloatLanes from;
+      std::memcpy(&from, &state.from[std::size_t(base)], sizeof from);
+      from = select(lanes_of_bits(going_on), select(choose_diffuse, pdf, broadcast(0.0f)), from);
+      std::memcpy(static_cast<void*>(&state.from[std::size_t(base)]), &from, sizeof from);
     }
 
     const IntLanes continues = lanes_of_bits(going_on);
