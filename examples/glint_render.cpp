@@ -2,21 +2,17 @@
 // compiled (GLINT_VARIANT names a type of glint::variants, e.g. -DGLINT_VARIANT=report). One
 // executable per variant keeps each translation unit to a single variant (with its two renderers
 // for a chain variant: the wavefront one by default, the scalar one with --scalar). Its options,
-// outputs, signals, checkpoints and execution model are render_command.hpp's, shared with
-// glint-render-mpi.
+// outputs, signals, checkpoints, scene loading and execution model are render_command.hpp's,
+// shared with glint-render-mpi and compiled once (the glint-cli library); this file only
+// renders the built scene with the variant's renderer (render_variant.hpp).
 
 #include <csignal>
-#include <cstdint>
-#include <cstdio>
 #include <iostream>
 #include <string>
-#include <string_view>
-#include <utility>
 
-#include "glint/glint.hpp"
-#include "load_progress.hpp"
 #include "progress_printer.hpp"
 #include "render_command.hpp"
+#include "render_variant.hpp"
 
 namespace {
 
@@ -42,7 +38,8 @@ a checkpoint that cannot be resumed or a CPU without an instruction set this bui
 3 for a valid scene that this variant cannot render (a shading kind it was built without),
 128 + the signal's number when a signal stopped the render (130 for SIGINT).
 )",
-    Variant::info.name};
+    Variant::info.name,
+    glint::cli::kVariantHasWavefront};
 
 constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
@@ -65,21 +62,17 @@ int main(int argc, char** argv) {
   cli::install_signal_handlers(kProgram.name, kStopSignals);
   try {
     const std::string output = cli::check_outputs(options);
-    std::uint64_t scene_hash = 0;  // of the bytes parsed, for checkpoints
-    const glint::Scene scene = [&] {
-      cli::LoadProgress loading(!options.quiet, options.scene);
-      std::string text = glint::read_scene_file_text(options.scene, loading.reader_callback());
-      if (options.checkpoint || options.resume) scene_hash = cli::scene_text_hash(text);
-      return cli::parse_and_build(loading, std::move(text), options.scene);
-    }();
+    const cli::LoadedScene loaded =
+        cli::load_scene(options.scene, !options.quiet, options.checkpoint || options.resume);
+    const glint::Scene& scene = loaded.scene;
     glint::check_supported<Variant>(scene);
     const glint::RenderSettings settings = cli::render_settings(options, scene);
-    cli::PassKeeper keeper(kProgram, options, settings, scene_hash);
+    cli::PassKeeper keeper(kProgram, options, settings, loaded.text_hash);
 
     const glint::RenderControl control{cli::ProgressPrinter(!options.quiet), keeper.callback(),
                                        &cli::stop_requested};
-    const glint::RenderResult result =
-        cli::with_renderer<Variant>(cli::execution_model(options), [&]<typename Renderer>() {
+    const glint::RenderResult result = cli::with_renderer<Variant>(
+        cli::execution_model(kProgram, options), [&]<typename Renderer>() {
           return Renderer::render(scene, settings, control, keeper.start());
         });
     return cli::finish_run(kProgram, options, output, settings, result, keeper,

@@ -1,7 +1,7 @@
 // glint-render-mpi: glint-render on several processes, with MPI (`mpirun -n N glint-render-mpi
 // SCENE [options]`), writing the image glint-render writes with the same options, bit for bit.
 // Built for the default variant only (GLINT_VARIANT, as glint-render), with its wavefront
-// renderer by default and its scalar one with --scalar (render_command.hpp's with_renderer).
+// renderer by default and its scalar one with --scalar (render_variant.hpp's with_renderer).
 //
 // Every rank renders with all its threads (render_tiles); rank 0 also schedules,
 // gathers and writes. The render is glint-render's passes. A pixel's sum must grow sample by
@@ -46,6 +46,7 @@
 #include "load_progress.hpp"
 #include "progress_printer.hpp"
 #include "render_command.hpp"
+#include "render_variant.hpp"
 #include "tile_scheduler.hpp"
 
 namespace {
@@ -86,7 +87,8 @@ resumed, a CPU without an instruction set this build uses or a rank that failed,
 options, 3 for a valid scene that this variant cannot render (a shading kind it was built
 without), 128 + the signal's number when a signal stopped the render (138 for SIGUSR1).
 )",
-    Variant::info.name};
+    Variant::info.name,
+    cli::kVariantHasWavefront};
 
 // SIGUSR1 too: mpirun forwards it as it is, without killing the ranks a second later.
 constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1};
@@ -332,7 +334,7 @@ struct LoadTimes {
 std::string scene_text(const World& world, const cli::Options& options, const MpiOptions& mpi,
                        cli::LoadProgress& loading, Clock::time_point start, LoadTimes& times) {
   if (mpi.scene_everywhere) {
-    std::string text = glint::read_scene_file_text(options.scene, loading.reader_callback());
+    std::string text = cli::scene_file_text(loading, options.scene);
     times.read = seconds_since(start);
     return text;
   }
@@ -340,7 +342,7 @@ std::string scene_text(const World& world, const cli::Options& options, const Mp
   std::uint64_t size = UINT64_MAX;  // rank 0 could not read it
   std::exception_ptr failure;
   if (world.rank == 0) try {
-      text = glint::read_scene_file_text(options.scene, loading.reader_callback());
+      text = cli::scene_file_text(loading, options.scene);
       size = text.size();
       times.read = seconds_since(start);
     } catch (...) {
@@ -885,7 +887,8 @@ int run(const World& world, int argc, char** argv) {
                              if (const glint::RenderStart start = keeper->start(); start.sums)
                                sums = *start.sums;
                            }
-                           renderer.emplace(*scene, settings, sums, cli::execution_model(options));
+                           renderer.emplace(*scene, settings, sums,
+                                            cli::execution_model(kProgram, options));
                            if (std::optional<cli::Failure> failure = renderer->started())
                              throw glint::Error(failure->message);
                          })))

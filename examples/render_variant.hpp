@@ -1,0 +1,39 @@
+#pragma once
+// What glint-render and glint-render-mpi share that depends on the variant they render with: its
+// type and the renderer a run uses. The rest of what they share is render_command.hpp's, compiled
+// once in the glint-cli library; this header alone names the variant, so only the programs'
+// own translation units instantiate it. Each program includes it once (one translation unit
+// each), and with it the CPU check (cpu_check.hpp), which runs before main.
+
+#include "cpu_check.hpp"
+#include "glint/render/renderer.hpp"
+#include "glint/render/wavefront/wavefront_renderer.hpp"
+#include "glint/variants.hpp"
+#include "render_command.hpp"
+
+// GLINT_VARIANT names the type of glint::variants the program renders with (e.g.
+// -DGLINT_VARIANT=report), chosen when it is compiled.
+#ifndef GLINT_VARIANT
+#define GLINT_VARIANT default_variant
+#endif
+
+namespace glint::cli {
+
+using Variant = glint::variants::GLINT_VARIANT;
+static_assert(glint::NamedVariant<Variant>, "GLINT_VARIANT must name a variant of variants.hpp");
+
+/// Whether this program's variant has the wavefront renderer (Program::has_wavefront).
+inline constexpr bool kVariantHasWavefront = glint::WavefrontConfig<Variant>;
+
+/// The renderer of variant V for `model`: `render.template operator()<R>()` with R
+/// WavefrontRenderer<V> or Renderer<V>, returning what it returns. A variant without the
+/// wavefront renderer always gets Renderer<V> (--scalar changes nothing there).
+template <glint::NamedVariant V, typename Render>
+decltype(auto) with_renderer(ExecutionModel model, Render&& render) {
+  if constexpr (glint::WavefrontConfig<V>)
+    if (model == ExecutionModel::wavefront)
+      return render.template operator()<glint::WavefrontRenderer<V>>();
+  return render.template operator()<glint::Renderer<V>>();
+}
+
+}  // namespace glint::cli
