@@ -45,7 +45,8 @@ inline constexpr std::size_t kMaxInstructionSets = 24;
 /// The instruction sets the compiler was told it may use, among those __builtin_cpu_supports
 /// can test in GCC 12 and clang 14, with their presence on this CPU. Fills `sets` (at least
 /// kMaxInstructionSets long) and returns how many it holds.
-GLINT_BASELINE_CODE inline std::size_t instruction_sets_used(InstructionSet* sets) {
+GLINT_BASELINE_CODE inline std::size_t instruction_sets_used(
+    [[maybe_unused]] InstructionSet* sets) {
   __builtin_cpu_init();  // needed before any constructor of libgcc's own has run
   std::size_t n = 0;
 #define GLINT_USES(set_name, feature) \
