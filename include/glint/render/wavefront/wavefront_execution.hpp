@@ -94,6 +94,44 @@ concept LanewiseSampler = requires(typename S::Lanes lanes, const S& from, S& to
 };
 #endif
 
+namespace detail {
+
+/// The samplers of a thread's paths in flight, path p in slot p: one sampler per path, or
+/// (kInLanes) the sampler's Lanes form, a block of eight paths per element, which the stages
+/// draw from in place instead of loading and storing eight samplers around every stage.
+template <typename S, bool kInLanes>
+class PathSamplers {
+ public:
+  explicit PathSamplers(int paths) : samplers_(std::size_t(paths)) {}
+  S& operator[](int p) { return samplers_[std::size_t(p)]; }
+  void set(int p, const S& sampler) { samplers_[std::size_t(p)] = sampler; }
+  void move(int from, int to) { samplers_[std::size_t(to)] = samplers_[std::size_t(from)]; }
+
+ private:
+  std::vector<S> samplers_;
+};
+
+#if defined(GLINT_AVX2)
+template <typename S>
+class PathSamplers<S, true> {
+ public:
+  explicit PathSamplers(int paths) : blocks_(std::size_t(paths / kLaneCount)) {}
+  /// The samplers of paths base .. base+7 (base a multiple of eight).
+  typename S::Lanes& block(int base) { return blocks_[std::size_t(base / kLaneCount)]; }
+  void set(int p, const S& sampler) { block(p).set_lane(p % kLaneCount, sampler); }
+  void move(int from, int to) {
+    S sampler;
+    block(from).get_lane(from % kLaneCount, sampler);
+    set(to, sampler);
+  }
+
+ private:
+  AlignedArray<typename S::Lanes> blocks_;
+};
+#endif
+
+}  // namespace detail
+
 template <RenderConfig C>
 class WavefrontExecution {
   static_assert(WavefrontConfig<C>,
@@ -110,8 +148,11 @@ class WavefrontExecution {
 #if defined(GLINT_AVX2)
   /// Whether the camera and shading stages run eight paths at a time (see LanewisePolicies).
   static constexpr bool kUsesLanes = LanewisePolicies<C>;
+  /// Whether the samplers are kept in their Lanes form (detail::PathSamplers).
+  static constexpr bool kSamplersInLanes = kUsesLanes && LanewiseSampler<SamplerType>;
 #else
   static constexpr bool kUsesLanes = false;
+  static constexpr bool kSamplersInLanes = false;
 #endif
 
   /// Paths in flight per thread: enough that eight-ray batches stay full while paths end at
@@ -200,7 +241,7 @@ class WavefrontExecution {
     detail::AlignedArray<std::int32_t> depth;
     std::vector<std::uint64_t> sample;  ///< the path's sample, numbered within the tile's work
     std::vector<Origin> from;
-    std::vector<SamplerType> sampler;
+    detail::PathSamplers<SamplerType, kSamplersInLanes> sampler;
 
     // What the current bounce waits for: light that the queued rays may bring, added once they
     // are traced, in ChainEstimator's order (point lights, then the emitter sample).
@@ -301,11 +342,12 @@ class WavefrontExecution {
         const LaneMask lanes = lanes_below(last - base) & ~lanes_below(std::max(0, first - base));
         start_lanes(state, base, lanes, piece);
       }
-      return;
-    }
+    } else
 #endif
-    for (int p = first; p < last; ++p)
-      start_path(state, p, piece);
+    {
+      for (int p = first; p < last; ++p)
+        start_path(state, p, piece);
+    }
   }
 
   /// Path p starts sample state.sample[p].
@@ -313,7 +355,7 @@ class WavefrontExecution {
     const auto u = std::size_t(p);
     Vec2 film = start_sample(state, u, piece);
     if constexpr (C::antialiasing::enabled)
-      film += C::antialiasing::offset(state.sampler[u].next_2d(), settings_.antialias_sigma);
+      film += C::antialiasing::offset(state.sampler[p].next_2d(), settings_.antialias_sigma);
     set_ray(state, p, camera_.ray_through(film));
     state.throughput.set(p, Color(1.0f));
     state.radiance.set(p, Color(0.0f));
@@ -325,8 +367,10 @@ class WavefrontExecution {
     const std::uint64_t n = state.sample[p];
     const int x = piece.x(n);
     const int y = piece.y(n);
-    state.sampler[p].start(PixelSample{std::uint32_t(x), std::uint32_t(y), piece.index(n),
-                                       std::uint32_t(settings_.samples_per_pixel), settings_.seed});
+    SamplerType sampler;
+    sampler.start(PixelSample{std::uint32_t(x), std::uint32_t(y), piece.index(n),
+                              std::uint32_t(settings_.samples_per_pixel), settings_.seed});
+    state.sampler.set(int(p), sampler);
     state.depth[p] = 0;
     state.from[p] = Origin{};
     return Vec2(float(x) + 0.5f, float(y) + 0.5f);
@@ -344,7 +388,7 @@ class WavefrontExecution {
       film.y[i] = centre.y;
     });
     if constexpr (C::antialiasing::enabled) {
-      const Vec2Lanes u = SamplerBlock(state.sampler, base, lanes).next_2d(lanes);
+      const Vec2Lanes u = SamplerBlock(state.sampler, base).next_2d(lanes);
       const Vec2Lanes offset = C::antialiasing::offset(u, settings_.antialias_sigma);
       film = {film.x + offset.x, film.y + offset.y};
     }
@@ -403,7 +447,7 @@ class WavefrontExecution {
       radiance += throughput * interaction.material().emission;
     state.radiance.set(p, radiance);
     const ReportMaterial<C> material(interaction, ray.direction);
-    SamplerType& sampler = state.sampler[u];
+    SamplerType& sampler = state.sampler[p];
     const int depth = state.depth[u];
     state.shading_throughput.set(p, throughput);
     if (material.has_lobe(Lobe::diffuse)) {
@@ -442,41 +486,30 @@ class WavefrontExecution {
   }
 
 #if defined(GLINT_AVX2)
-  /// The samplers of paths base .. base+7 as one: in SIMD lanes when the sampler has a Lanes
-  /// form (loaded here, stored back when the block goes), one by one otherwise. Each draw is
-  /// for the lanes of a mask; the values of the other lanes are unspecified.
+  /// The samplers of paths base .. base+7 as one: drawn from in place in their Lanes form
+  /// (kSamplersInLanes), one by one otherwise. Each draw is for the lanes of a mask, whose
+  /// samplers alone advance; the values of the other lanes are unspecified.
   class SamplerBlock {
    public:
-    SamplerBlock(std::vector<SamplerType>& samplers, int base, LaneMask lanes)
-        : samplers_(samplers), base_(std::size_t(base)), lanes_(lanes) {
-      if constexpr (kLanes)
-        for_each_lane(lanes_,
-                      [&](int i) { lanes_state_.set_lane(i, samplers_[base_ + std::size_t(i)]); });
-    }
-    ~SamplerBlock() {
-      if constexpr (kLanes)
-        for_each_lane(lanes_,
-                      [&](int i) { lanes_state_.get_lane(i, samplers_[base_ + std::size_t(i)]); });
-    }
-    SamplerBlock(const SamplerBlock&) = delete;
-    SamplerBlock& operator=(const SamplerBlock&) = delete;
+    SamplerBlock(detail::PathSamplers<SamplerType, kSamplersInLanes>& samplers, int base)
+        : samplers_(samplers), base_(base) {}
 
     FloatLanes next_1d(LaneMask mask) {
-      if constexpr (kLanes) {
-        return lanes_state_.next_1d(lanes_of_bits(mask));
+      if constexpr (kSamplersInLanes) {
+        return samplers_.block(base_).next_1d(lanes_of_bits(mask));
       } else {
         FloatLanes value = broadcast(0.0f);
-        for_each_lane(mask, [&](int i) { value[i] = samplers_[base_ + std::size_t(i)].next_1d(); });
+        for_each_lane(mask, [&](int i) { value[i] = samplers_[base_ + i].next_1d(); });
         return value;
       }
     }
     Vec2Lanes next_2d(LaneMask mask) {
-      if constexpr (kLanes) {
-        return lanes_state_.next_2d(lanes_of_bits(mask));
+      if constexpr (kSamplersInLanes) {
+        return samplers_.block(base_).next_2d(lanes_of_bits(mask));
       } else {
         Vec2Lanes value{broadcast(0.0f), broadcast(0.0f)};
         for_each_lane(mask, [&](int i) {
-          const Vec2 u = samplers_[base_ + std::size_t(i)].next_2d();
+          const Vec2 u = samplers_[base_ + i].next_2d();
           value.x[i] = u.x;
           value.y[i] = u.y;
         });
@@ -485,13 +518,8 @@ class WavefrontExecution {
     }
 
    private:
-    static constexpr bool kLanes = LanewiseSampler<SamplerType>;
-    struct NoLanes {};
-    std::vector<SamplerType>& samplers_;
-    std::size_t base_;
-    LaneMask lanes_;
-    [[no_unique_address]] std::conditional_t<kLanes, typename SamplerType::Lanes, NoLanes>
-        lanes_state_{};
+    detail::PathSamplers<SamplerType, kSamplersInLanes>& samplers_;
+    int base_;
   };
 
   /// What shade_lanes reads of the spheres that eight paths hit, gathered lane by lane.
@@ -626,7 +654,7 @@ class WavefrontExecution {
     const FloatLanes total = surface.diffuse + surface.mirror + surface.transparent;
     const IntLanes depth = load_lanes(&state.depth[std::size_t(base)]);
     const LaneMask diffuse_lanes = lane_bits(has_diffuse);
-    SamplerBlock draws(state.sampler, base, hits);
+    SamplerBlock draws(state.sampler, base);
 
     // Light: the point lights' shadow rays and the emitter sample, at diffuse hits.
     if (diffuse_lanes != 0) {
@@ -1030,7 +1058,7 @@ class WavefrontExecution {
     state.depth[t] = state.depth[f];
     state.sample[t] = state.sample[f];
     state.from[t] = state.from[f];
-    state.sampler[t] = state.sampler[f];
+    state.sampler.move(from, to);
   }
 
   /// Adds the finished samples from `summed` on, in order, to their pixels' sums, up to the
