@@ -539,6 +539,43 @@ void check_heuristic_limits() {
 
 }  // namespace
 
+#if defined(GLINT_AVX2)
+TEST_CASE("emitter sampling: EmitterTable::choose_lanes chooses what choose does, lane by lane",
+          "[emitters][lanes]") {
+  // Tables counted over (1, 7, 64 emitters) and searched (65, 300); each u is tried at the
+  // cdf's steps and their neighbours, where a count and a search could disagree, and at random.
+  glint::Pcg32 rng(77u, 3u);
+  for (const int size : {1, 7, 64, 65, 300}) {
+    std::vector<SphereEmitter> emitters;
+    for (int i = 0; i < size; ++i)
+      emitters.push_back({Vec3(float(i)), 0.1f + rng.next_float(),
+                          Color(rng.next_float(), rng.next_float(), 1.0f), std::uint32_t(i)});
+    const glint::EmitterTable table(emitters);
+    std::vector<float> us = {0.0f, std::nextafter(1.0f, 0.0f)};
+    float step = 0.0f;
+    for (std::uint32_t i = 0; i < table.size(); ++i) {
+      step += table.probability(i);
+      for (const float u : {step, std::nextafter(step, 0.0f), std::nextafter(step, 1.0f)})
+        if (u >= 0.0f && u < 1.0f) us.push_back(u);
+    }
+    for (int i = 0; i < 256; ++i)
+      us.push_back(rng.next_float());
+    while (us.size() % glint::kLaneCount != 0)
+      us.push_back(0.5f);
+    for (std::size_t base = 0; base < us.size(); base += glint::kLaneCount) {
+      glint::FloatLanes u;
+      for (int i = 0; i < glint::kLaneCount; ++i)
+        u[i] = us[base + std::size_t(i)];
+      const glint::IntLanes chosen = table.choose_lanes(u);
+      for (int i = 0; i < glint::kLaneCount; ++i) {
+        INFO(size << " emitters, u = " << u[i]);
+        CHECK(std::uint32_t(chosen[i]) == table.choose(u[i]).index);
+      }
+    }
+  }
+}
+#endif
+
 TEST_CASE("emitter sampling: balance heuristic: weights of (a, b) and (b, a) sum to one",
           "[emitters]") {
   // The balance weight is a / (a + b) (Veach 1997, 9.2.2).

@@ -15,6 +15,7 @@
 #include <optional>
 #include <vector>
 
+#include "glint/math/lanes.hpp"
 #include "glint/math/sampling.hpp"
 #include "glint/math/vector.hpp"
 
@@ -151,8 +152,30 @@ class EmitterTable {
     return {index, probability_[index]};
   }
 
+#if defined(GLINT_AVX2)
+  /// choose()'s index for each lane of `u`: the number of cumulative probabilities that u is
+  /// not below, at most size() - 1, which is the place upper_bound finds. Counted over the
+  /// whole table up to kLinearChoices emitters, searched lane by lane beyond. Requires
+  /// !empty().
+  IntLanes choose_lanes(FloatLanes u) const {
+    const auto last = std::int32_t(cdf_.size()) - 1;
+    IntLanes index = broadcast(std::int32_t(0));
+    if (cdf_.size() <= kLinearChoices) {
+      for (const float step : cdf_)
+        index -= ~(u < step);  // a comparison is -1 where true, so this adds 1 where false
+      return select(index > last, broadcast(last), index);
+    }
+    for (int i = 0; i < kLaneCount; ++i)
+      index[i] = std::int32_t(choose(u[i]).index);
+    return index;
+  }
+  static constexpr std::size_t kLinearChoices = 64;
+#endif
+
   /// The probability that choose() gives emitter `index`.
-  float probability(std::uint32_t index) const { return probability_[index]; }
+  float probability(std::uint32_t index) const {
+    return probability_[index];
+  }
 
  private:
   std::vector<SphereEmitter> emitters_;

@@ -804,15 +804,26 @@ class WavefrontExecution {
     IntLanes emitter_sphere = broadcast(std::int32_t(kNoSphere));
     const FloatLanes u_choice = draws.next_1d(lanes);
     const Vec2Lanes u = draws.next_2d(lanes);
-    for_each_lane(lanes, [&](int i) {
-      const EmitterTable::Choice choice = emitters.choose(u_choice[i]);
-      const SphereEmitter& emitter = emitters[choice.index];
-      center.set_lane(i, emitter.center);
-      radiance.set_lane(i, emitter.radiance);
-      radius[i] = emitter.radius;
-      probability[i] = choice.probability;
-      emitter_sphere[i] = std::int32_t(emitter.sphere);
-    });
+    if (emitters.size() == 1) {
+      // The one emitter is every lane's choice (choose's answer whatever u).
+      const SphereEmitter& emitter = emitters[0];
+      center = Vec3Lanes::broadcast(emitter.center);
+      radiance = Vec3Lanes::broadcast(emitter.radiance);
+      radius = broadcast(emitter.radius);
+      probability = broadcast(emitters.probability(0));
+      emitter_sphere = broadcast(std::int32_t(emitter.sphere));
+    } else {
+      const IntLanes chosen = emitters.choose_lanes(u_choice);
+      for_each_lane(lanes, [&](int i) {
+        const auto index = std::uint32_t(chosen[i]);
+        const SphereEmitter& emitter = emitters[index];
+        center.set_lane(i, emitter.center);
+        radiance.set_lane(i, emitter.radiance);
+        radius[i] = emitter.radius;
+        probability[i] = emitters.probability(index);
+        emitter_sphere[i] = std::int32_t(emitter.sphere);
+      });
+    }
     const LaneMask on_emitter = lanes & lane_bits(emitter_sphere == hit_sphere);
     // EmitterView: from outside the cone; from inside (or from the emitter's inner surface)
     // a point on its area; from its outer surface, nothing.
@@ -985,10 +996,20 @@ class WavefrontExecution {
       const LaneMask active = lanes_below(count - base);
       HitBatch found;
       scene_.closest_hits(state.emitter_rays[block], active, found);
+      LaneMask visible = 0;
+#if defined(GLINT_AVX2)
+      IntLanes found_sphere, emitter_sphere;
+      std::memcpy(&found_sphere, found.sphere, sizeof found_sphere);
+      std::memcpy(&emitter_sphere, &state.emitter_sphere[std::size_t(base)], sizeof emitter_sphere);
+      visible = active & lane_bits(found_sphere == emitter_sphere);
+#else
       for_each_lane(active, [&](int lane) {
-        const auto q = std::size_t(base + lane);
-        if (found.sphere[lane] == state.emitter_sphere[q])
-          state.pending[state.emitter_owner[q]] |= kEmitterVisible;
+        if (found.sphere[lane] == state.emitter_sphere[std::size_t(base + lane)])
+          visible |= LaneMask(1) << lane;
+      });
+#endif
+      for_each_lane(visible, [&](int lane) {
+        state.pending[state.emitter_owner[std::size_t(base + lane)]] |= kEmitterVisible;
       });
     }
     state.emitter_count = 0;
