@@ -158,6 +158,7 @@ class WavefrontExecution {
   /// Paths in flight per thread: enough that eight-ray batches stay full while paths end at
   /// different depths, few enough that the batch's state stays in the core's L2 cache.
   static constexpr int kPaths = 256;
+  static_assert(kPaths % 64 == 0);
   /// Samples that may be started beyond the first one not yet added to its pixel: a long path
   /// holds back the sums behind it, not the paths that start after it.
   static constexpr int kWindow = 4 * kPaths;
@@ -1026,14 +1027,30 @@ class WavefrontExecution {
     for (int p = 0; p < live; ++p)
       gather_path(state, p);
 #endif
-    for (int p = live - 1; p >= 0; --p) {
-      const auto u = std::size_t(p);
-      if (!state.ends[u]) continue;
-      const auto slot = std::size_t(state.sample[u] % std::uint64_t(kWindow));
-      state.results[slot] = state.radiance.get(p);
-      state.result_ready[slot] = 1;
-      if (p != --live) move_path(state, live, p);
+    // The ended paths as bits, visited from the last down: a path moved into a hole comes from
+    // above it, where every path has been visited, so the bits taken first stay true. (A test of
+    // each path's flag instead is a branch that mispredicts about once per ended path.)
+    std::uint64_t ended[kPaths / 64] = {};
+    for (int base = 0; base < live; base += RayBatch::kWidth) {
+      std::uint64_t bits = 0;
+#if defined(GLINT_AVX2)
+      bits = lane_bits(load_lanes(&state.ends[std::size_t(base)]) != 0);
+#else
+      for (int i = 0; i < RayBatch::kWidth; ++i)
+        bits |= std::uint64_t(state.ends[std::size_t(base + i)] != 0) << i;
+#endif
+      ended[base / 64] |= (bits & lanes_below(live - base)) << (base % 64);
     }
+    for (int word = (live - 1) / 64; word >= 0; --word)
+      for (std::uint64_t bits = ended[word]; bits != 0;) {
+        const int top = 63 - std::countl_zero(bits);
+        bits &= ~(std::uint64_t(1) << top);
+        const int p = 64 * word + top;
+        const auto slot = std::size_t(state.sample[std::size_t(p)] % std::uint64_t(kWindow));
+        state.results[slot] = state.radiance.get(p);
+        state.result_ready[slot] = 1;
+        if (p != --live) move_path(state, live, p);
+      }
     return live;
   }
 
