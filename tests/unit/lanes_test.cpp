@@ -147,7 +147,7 @@ TEST_CASE("load_columns turns eight rows of eight floats, anywhere in memory, in
 }
 
 TEST_CASE(
-    "packing_order and appending_order move the lanes of a mask, in order, where a queue "
+    "packing_order and rotated_order move the lanes of a mask, in order, where a queue "
     "continues",
     "[lanes][unit]") {
   const IntLanes values = glint::lane_indices() * 10 + 3;
@@ -161,7 +161,8 @@ TEST_CASE(
       CHECK(packed[k] == chosen[k] * 10 + 3);
     }
     for (int at = 0; at < kLaneCount; ++at) {
-      const IntLanes appended = glint::permute(values, glint::appending_order(mask, at));
+      const IntLanes appended =
+          glint::permute(values, glint::rotated_order(glint::packing_order(mask), at));
       for (std::size_t k = 0; k < chosen.size(); ++k) {
         INFO("mask " << mask << ", at " << at << ", entry " << k);
         CHECK(appended[(std::size_t(at) + k) % kLaneCount] == chosen[k] * 10 + 3);

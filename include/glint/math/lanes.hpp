@@ -134,11 +134,10 @@ inline IntLanes packing_order(std::uint32_t mask) {
   return std::bit_cast<IntLanes>(_mm256_cvtepu8_epi32(bytes));
 }
 
-/// packing_order followed by a rotation by `at` lanes: the lanes of `mask`, lowest first, in
-/// lanes at, at+1, ... (mod 8), where a queue of blocks of eight whose last block holds `at`
-/// entries continues.
-inline IntLanes appending_order(std::uint32_t mask, int at) {
-  return permute(packing_order(mask), (lane_indices() - at) & 7);
+/// A packing_order rotated by `at` lanes: the lanes it packs, lowest first, in lanes at, at+1,
+/// ... (mod 8), where a queue of blocks of eight whose last block holds `at` entries continues.
+inline IntLanes rotated_order(IntLanes packing, int at) {
+  return permute(packing, (lane_indices() - at) & 7);
 }
 
 /// bits_to_unit_float lane by lane: the top 24 bits as a float in [0, 1), exactly.

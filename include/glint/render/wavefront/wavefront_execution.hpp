@@ -158,7 +158,7 @@ class WavefrontExecution {
   /// Paths in flight per thread: enough that eight-ray batches stay full while paths end at
   /// different depths, few enough that the batch's state stays in the core's L2 cache.
   static constexpr int kPaths = 256;
-  static_assert(kPaths % 64 == 0);
+  static_assert(kPaths % 64 == 0);  // gather_and_retire's words of ended paths
   /// Samples that may be started beyond the first one not yet added to its pixel: a long path
   /// holds back the sums behind it, not the paths that start after it.
   static constexpr int kWindow = 4 * kPaths;
@@ -800,31 +800,27 @@ class WavefrontExecution {
     state.emitter_light.set_lanes(base, Vec3Lanes::broadcast(Color(0.0f)));
     const EmitterTable& emitters = scene_.emitters();
     if (emitters.empty()) return;
-    Vec3Lanes center{}, radiance{};
-    FloatLanes radius{}, probability{};
-    IntLanes emitter_sphere = broadcast(std::int32_t(kNoSphere));
     const FloatLanes u_choice = draws.next_1d(lanes);
     const Vec2Lanes u = draws.next_2d(lanes);
-    if (emitters.size() == 1) {
-      // The one emitter is every lane's choice (choose's answer whatever u).
-      const SphereEmitter& emitter = emitters[0];
-      center = Vec3Lanes::broadcast(emitter.center);
-      radiance = Vec3Lanes::broadcast(emitter.radiance);
-      radius = broadcast(emitter.radius);
-      probability = broadcast(emitters.probability(0));
-      emitter_sphere = broadcast(std::int32_t(emitter.sphere));
-    } else {
-      const IntLanes chosen = emitters.choose_lanes(u_choice);
-      for_each_lane(lanes, [&](int i) {
-        const auto index = std::uint32_t(chosen[i]);
-        const SphereEmitter& emitter = emitters[index];
-        center.set_lane(i, emitter.center);
-        radiance.set_lane(i, emitter.radiance);
-        radius[i] = emitter.radius;
-        probability[i] = emitters.probability(index);
-        emitter_sphere[i] = std::int32_t(emitter.sphere);
-      });
+    // The chosen emitters' eight words (centre, radius, radiance, sphere) as one 8x8 transpose.
+    // Every lane's index is a valid one, whatever its u, so every lane may read its record.
+    static_assert(offsetof(SphereEmitter, center) == 0 && offsetof(SphereEmitter, radius) == 12 &&
+                  offsetof(SphereEmitter, radiance) == 16 &&
+                  offsetof(SphereEmitter, sphere) == 28 && sizeof(SphereEmitter) == 32);
+    const IntLanes chosen = emitters.choose_lanes(u_choice);
+    const float* records[kLaneCount];
+    FloatLanes probability;
+    for (int i = 0; i < kLaneCount; ++i) {
+      const auto index = std::uint32_t(chosen[i]);
+      records[i] = reinterpret_cast<const float*>(&emitters[index]);
+      probability[i] = emitters.probability(index);
     }
+    FloatLanes words[kLaneCount];
+    load_columns(records, words);
+    const Vec3Lanes center{words[0], words[1], words[2]};
+    const FloatLanes radius = words[3];
+    const Vec3Lanes radiance{words[4], words[5], words[6]};
+    const auto emitter_sphere = std::bit_cast<IntLanes>(words[7]);
     const LaneMask on_emitter = lanes & lane_bits(emitter_sphere == hit_sphere);
     // EmitterView: from outside the cone; from inside (or from the emitter's inner surface)
     // a point on its area; from its outer surface, nothing.
@@ -881,12 +877,13 @@ class WavefrontExecution {
   /// Appends the rays of lanes `lanes` of `rays` to the queue `blocks`, which holds `count`
   /// rays, in lane order: what RayBatch::set would write lane by lane, a column at a time. The
   /// queue has room for them.
-  static void append_rays(RayBatch* blocks, int count, LaneMask lanes, const RayLanes& rays) {
+  static void append_rays(RayBatch* blocks, int count, LaneMask lanes, IntLanes packing,
+                          const RayLanes& rays) {
     const int at = count % RayBatch::kWidth;
     const int end = at + std::popcount(lanes);
     RayBatch& last = blocks[count / RayBatch::kWidth];
     RayBatch* const next = end > RayBatch::kWidth ? &last + 1 : nullptr;
-    const IntLanes order = appending_order(lanes, at);
+    const IntLanes order = rotated_order(packing, at);
     const IntLanes lane = lane_indices();
     const IntLanes into_last = (lane >= at) & (lane < end);
     const IntLanes into_next = lane < end - RayBatch::kWidth;
@@ -921,12 +918,12 @@ class WavefrontExecution {
     if (next) merge(*next, into_next);
   }
 
-  /// Stores the lanes of `lanes` of `values`, lowest first, at to[0], to[1], ... (and
-  /// unspecified values up to to[7]).
+  /// Stores the lanes that `packing` (a packing_order) moves first, lowest first, at to[0],
+  /// to[1], ... (and unspecified values up to to[7]).
   template <typename T>
-  static void append_values(T* to, LaneMask lanes, IntLanes values) {
+  static void append_values(T* to, IntLanes packing, IntLanes values) {
     static_assert(sizeof(T) == sizeof(std::int32_t));
-    const IntLanes packed = permute(values, packing_order(lanes));
+    const IntLanes packed = permute(values, packing);
     std::memcpy(to, &packed, sizeof packed);
   }
 
@@ -935,11 +932,11 @@ class WavefrontExecution {
                          const Vec3Lanes& light) const {
     if (state.shadow_count + std::popcount(lanes) > kShadowQueue) trace_shadow_rays(state);
     const int q = state.shadow_count;
-    append_rays(state.shadow_rays.data(), q, lanes, rays);
-    append_values(&state.shadow_owner[std::size_t(q)], lanes, base + lane_indices());
-    const IntLanes order = packing_order(lanes);
+    const IntLanes packing = packing_order(lanes);
+    append_rays(state.shadow_rays.data(), q, lanes, packing, rays);
+    append_values(&state.shadow_owner[std::size_t(q)], packing, base + lane_indices());
     state.shadow_irradiance.set_lanes(
-        q, {permute(light.x, order), permute(light.y, order), permute(light.z, order)});
+        q, {permute(light.x, packing), permute(light.y, packing), permute(light.z, packing)});
     state.shadow_count += std::popcount(lanes);
   }
 
@@ -947,9 +944,10 @@ class WavefrontExecution {
   static void queue_emitter_rays(ThreadState& state, int base, LaneMask lanes, const RayLanes& rays,
                                  IntLanes emitter_sphere) {
     const int q = state.emitter_count;
-    append_rays(state.emitter_rays.data(), q, lanes, rays);
-    append_values(&state.emitter_owner[std::size_t(q)], lanes, base + lane_indices());
-    append_values(&state.emitter_sphere[std::size_t(q)], lanes, emitter_sphere);
+    const IntLanes packing = packing_order(lanes);
+    append_rays(state.emitter_rays.data(), q, lanes, packing, rays);
+    append_values(&state.emitter_owner[std::size_t(q)], packing, base + lane_indices());
+    append_values(&state.emitter_sphere[std::size_t(q)], packing, emitter_sphere);
     state.emitter_count += std::popcount(lanes);
   }
 
