@@ -323,9 +323,36 @@ TEST_CASE("LightBuffer: blocks answers as the full scan for rays that end at the
   }
 }
 
+TEST_CASE("LightBuffer: ends_here takes the rays of for_each_light_ray only", "[light_buffer]") {
+  glint::SphereSet spheres;
+  spheres.add(Vec3(5.0f, 0.0f, 0.0f), 1.0f, 0);
+  const Vec3 light(0.0f, 10.0f, 0.0f);
+  const LightBuffer buffer(light, spheres.columns());
+  const Ray to_light = shadow_ray(Vec3(3.0f, -2.0f, 1.0f), light, glint::kNoSphere, Vec3(0.0f));
+  const auto taken = [&](const Ray& ray) {
+    RayBatch batch;
+    for (int lane = 0; lane < kWidth; ++lane)
+      batch.set(lane, ray);
+    return buffer.ends_here(glint::avx2::ray_lanes(batch), _mm256_load_ps(batch.t_max), 0xFFu);
+  };
+  CHECK(taken(to_light) == 0xFFu);
+  Ray behind = to_light;
+  behind.t_min = -1.0f;  // would reach behind the origin, beyond the margins' bounds
+  CHECK(taken(behind) == 0u);
+  Ray short_of_it = to_light;
+  short_of_it.t_max *= 0.999f;
+  CHECK(taken(short_of_it) == 0u);
+  Ray long_way = shadow_ray(Vec3(0.0f, 10.0f, -1e4f), light, glint::kNoSphere, Vec3(0.0f));
+  CHECK(taken(long_way) == 0u);  // longer than four times the spheres' reach
+  Ray scaled = to_light;
+  scaled.direction *= 2.0f;
+  scaled.t_max *= 0.5f;
+  CHECK(taken(scaled) == 0u);
+}
+
 TEST_CASE("occluded: batches of shadow rays answer as the single-ray query",
           "[light_buffer][ray_batch]") {
-  for (const int count : {3, 20, 58}) {
+  for (const int count : {3, 30, 58}) {  // the first without light buffers
     for (const bool room : {false, true}) {
       for (const int lights : {1, 3, 20}) {
         DYNAMIC_SECTION(count << " spheres, " << lights << " lights" << (room ? ", a room" : "")) {

@@ -109,18 +109,18 @@ class LightBuffer {
           groups |= group;
         continue;
       }
-      const Dvec3 axis =
-          Dvec3(double(cx_[slot]) - double(light.x), double(cy_[slot]) - double(light.y),
-                double(cz_[slot]) - double(light.z)) /
+      const glm::dvec3 axis =
+          glm::dvec3(double(cx_[slot]) - double(light.x), double(cy_[slot]) - double(light.y),
+                     double(cz_[slot]) - double(light.z)) /
           distance;
       // The sphere's cone and a cell's overlap when their axes are at most the sum a + b of
       // their half angles apart: cos(a + b) = cos a cos b - sin a sin b.
       const double half_angle = std::asin(radius / distance) + margins.direction_error;
       const double cos_half = std::cos(half_angle), sin_half = std::sin(half_angle);
       for (std::size_t c = 0; c < cells.size(); ++c) {
-        const bool overlap =
-            half_angle + cells[c].half_angle >= kPi ||
-            dot(axis, cells[c].axis) >= cos_half * cells[c].cos_half - sin_half * cells[c].sin_half;
+        const bool overlap = half_angle + cells[c].half_angle >= kPi ||
+                             glm::dot(axis, cells[c].axis) >=
+                                 cos_half * cells[c].cos_half - sin_half * cells[c].sin_half;
         if (overlap) cell_groups_[c] |= group;
       }
     }
@@ -128,7 +128,8 @@ class LightBuffer {
 
   const Vec3& light() const { return light_; }
 
-  /// The lanes of `lanes` whose ray ends at the light: a direction of length 0.9 to 1.1 and
+  /// The lanes of `lanes` whose ray ends at the light: t_min at least 0, a direction of length
+  /// 0.9 to 1.1 and
   /// t_max no more than the length the margins cover, and origin + t_max direction within the
   /// endpoint tolerance of the light (a shadow ray of PathContext::for_each_light_ray, to
   /// rounding). NaN in a lane fails every comparison, so that lane is not one of them.
@@ -147,7 +148,8 @@ class LightBuffer {
                       _mm256_cmp_ps(t_max, _mm256_set1_ps(max_length_), _CMP_LE_OQ)),
         _mm256_and_ps(_mm256_cmp_ps(length2, _mm256_set1_ps(0.81f), _CMP_GE_OQ),
                       _mm256_cmp_ps(length2, _mm256_set1_ps(1.21f), _CMP_LE_OQ)));
-    return unsigned(_mm256_movemask_ps(ends)) & lanes;
+    const __m256 forward = _mm256_cmp_ps(rays.t_min, _mm256_setzero_ps(), _CMP_GE_OQ);
+    return unsigned(_mm256_movemask_ps(_mm256_and_ps(ends, forward))) & lanes;
   }
 
   /// cell_of(-direction) in each lane: the cell of the way back from the light to the origin.
@@ -202,14 +204,6 @@ class LightBuffer {
  private:
   static constexpr double kPi = 3.14159265358979323846;
 
-  struct Dvec3 {
-    double x, y, z;
-    Dvec3(double a, double b, double c) : x(a), y(b), z(c) {}
-    Dvec3 operator/(double s) const { return {x / s, y / s, z / s}; }
-  };
-  static double dot(const Dvec3& a, const Dvec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-  static double length(const Dvec3& a) { return std::sqrt(dot(a, a)); }
-
   /// The margins, all in double, as multiples of a scale s = 2 |light| + 6 reach (reach: how
   /// far the spheres extend from the light), which bounds |origin| + |light| and
   /// |origin - centre| for every ray the buffer takes (ends_here: no longer than 4 reach, a
@@ -227,8 +221,7 @@ class LightBuffer {
   ///    (twice that angle), plus 2^-16 for the rounding of a cell lookup near a cell's border.
   struct Margins {
     Margins(const Vec3& light, double reach) {
-      const double light_norm = std::sqrt(double(light.x) * light.x + double(light.y) * light.y +
-                                          double(light.z) * light.z);
+      const double light_norm = glm::length(glm::dvec3(light));
       scale = 2.0 * light_norm + 6.0 * reach;
       max_length = 4.0 * reach;
       endpoint_tolerance = std::ldexp(scale, -18);
@@ -242,20 +235,19 @@ class LightBuffer {
 
   /// A cell's directions: within half_angle of the unit axis.
   struct CellCone {
-    Dvec3 axis;
+    glm::dvec3 axis;
     double half_angle, cos_half, sin_half;
   };
 
   /// The direction of point (u, v) of face `face` of the cube (cell_of's inverse).
-  static Dvec3 face_point(int face, double u, double v) {
+  static glm::dvec3 face_point(int face, double u, double v) {
     const int axis = face / 2;
     const double major = face % 2 == 0 ? 1.0 : -1.0;
     double c[3];
     c[axis] = major;
     c[(axis + 1) % 3] = u;
     c[(axis + 2) % 3] = v;
-    const Dvec3 p(c[0], c[1], c[2]);
-    return p / length(p);
+    return glm::normalize(glm::dvec3(c[0], c[1], c[2]));
   }
 
   /// The cones around the cells (the same for every buffer, made once): the spherical
@@ -272,12 +264,13 @@ class LightBuffer {
       for (int i = 0; i < kCellsPerEdge; ++i)
         for (int j = 0; j < kCellsPerEdge; ++j) {
           const double u0 = -1.0 + step * i, v0 = -1.0 + step * j;
-          const Dvec3 axis = face_point(face, u0 + 0.5 * step, v0 + 0.5 * step);
+          const glm::dvec3 axis = face_point(face, u0 + 0.5 * step, v0 + 0.5 * step);
           double half_angle = 0.0;
           for (const double u : {u0, u0 + step})
             for (const double v : {v0, v0 + step})
               half_angle = std::max(
-                  half_angle, std::acos(std::clamp(dot(axis, face_point(face, u, v)), -1.0, 1.0)));
+                  half_angle,
+                  std::acos(std::clamp(glm::dot(axis, face_point(face, u, v)), -1.0, 1.0)));
           cones.push_back({axis, half_angle, std::cos(half_angle), std::sin(half_angle)});
         }
     return cones;
@@ -309,9 +302,9 @@ class LightBuffer {
   }
 
   double distance_to(const avx2::SphereColumns& spheres, std::size_t i) const {
-    return length(Dvec3(double(spheres.cx[i]) - double(light_.x),
-                        double(spheres.cy[i]) - double(light_.y),
-                        double(spheres.cz[i]) - double(light_.z)));
+    return glm::length(glm::dvec3(double(spheres.cx[i]) - double(light_.x),
+                                  double(spheres.cy[i]) - double(light_.y),
+                                  double(spheres.cz[i]) - double(light_.z)));
   }
 
   Vec3 light_{0.0f};
