@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "glint/policy/path_termination.hpp"
 #include "glint/policy/sampler.hpp"
 #include "glint/render/camera.hpp"
+#include "glint/render/wavefront/wavefront_execution.hpp"
 
 // The lane-wise code exists only where the compiler targets AVX2 (see math/lanes.hpp).
 #if defined(GLINT_AVX2)
@@ -401,6 +403,128 @@ TEMPLATE_TEST_CASE("a sampler's Lanes form draws bit for bit what the sampler dr
       TestType stored;
       lanes.get_lane(i, stored);
       CHECK(same_bits(stored.next_1d(), scalar[i].next_1d()));
+    }
+  }
+}
+
+namespace {
+
+/// Any 32-bit value, the ends of the range and small values included.
+std::uint32_t any_word(glint::Pcg32& rng) {
+  switch (rng.next_u32() % 8) {
+    case 0:
+      return 0;
+    case 1:
+      return ~std::uint32_t{0};
+    case 2:
+      return rng.next_u32() % 64;
+    default:
+      return rng.next_u32();
+  }
+}
+
+}  // namespace
+
+TEMPLATE_TEST_CASE("a sampler's Lanes form starts the lanes of a mask as the sampler starts",
+                   "[lanes][unit]", glint::IndependentSampler, glint::SobolSampler,
+                   glint::HybridSobolSampler<>, glint::HybridSobolSampler<6>) {
+  // The wavefront's camera stage starts the lanes of a block's mask, while the other lanes'
+  // paths are under way: every mask, from samplers that have drawn a while, at pixels, sample
+  // indices and seeds anywhere in their ranges.
+  glint::Pcg32 rng(2025, 7);
+  for (int trial = 0; trial < 16; ++trial) {
+    TestType before[kLaneCount];
+    typename TestType::Lanes under_way;
+    for (int i = 0; i < kLaneCount; ++i) {
+      before[i].start(
+          glint::PixelSample{rng.next_u32(), rng.next_u32(), rng.next_u32(), 16, rng.next_u32()});
+      for (std::uint32_t draws = rng.next_u32() % 12; draws > 0; --draws)
+        before[i].next_1d();
+      under_way.set_lane(i, before[i]);
+    }
+    for (std::uint32_t bits = 0; bits < 256; ++bits) {
+      INFO("trial " << trial << ", lanes " << bits);
+      glint::PixelSampleLanes sample;
+      sample.samples_per_pixel = 1 + rng.next_u32() % 1024;
+      sample.seed = (std::uint64_t{any_word(rng)} << 32) | any_word(rng);
+      TestType scalar[kLaneCount];
+      typename TestType::Lanes expected = under_way;
+      for (int i = 0; i < kLaneCount; ++i) {
+        sample.x[i] = any_word(rng);
+        sample.y[i] = any_word(rng);
+        sample.index[i] = any_word(rng);
+        scalar[i] = before[i];
+        if (!((bits >> i) & 1u)) continue;
+        scalar[i].start(glint::PixelSample{sample.x[i], sample.y[i], sample.index[i],
+                                           sample.samples_per_pixel, sample.seed});
+        expected.set_lane(i, scalar[i]);
+      }
+      typename TestType::Lanes lanes = under_way;
+      lanes.start(glint::lanes_of_bits(bits), sample);
+      // The Lanes forms are vectors only, without padding: the same state is the same bytes.
+      CHECK(std::memcmp(&lanes, &expected, sizeof lanes) == 0);
+      // Every lane then draws what its sampler draws: the started ones and the others.
+      const IntLanes all = glint::lanes_of_bits(0xffu);
+      for (int round = 0; round < 10; ++round) {
+        const bool two = round % 3 == 1;
+        const Vec2Lanes drawn = two ? lanes.next_2d(all) : Vec2Lanes{lanes.next_1d(all), {}};
+        for (int i = 0; i < kLaneCount; ++i) {
+          INFO("round " << round << ", lane " << i);
+          if (two) {
+            const Vec2 u = scalar[i].next_2d();
+            CHECK(same_bits(drawn.x[i], u.x));
+            CHECK(same_bits(drawn.y[i], u.y));
+          } else {
+            CHECK(same_bits(drawn.x[i], scalar[i].next_1d()));
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("a tile's samples are placed in SIMD lanes as one by one, at every quotient's edges",
+          "[lanes][unit]") {
+  // The lanes divide in floating point: the quotients that matter are those of the largest
+  // tiles and passes, of divisors that are not powers of two, and of the samples on either
+  // side of a multiple (the first and last sample of a pixel, the first and last pixel of a
+  // row).
+  glint::Pcg32 rng(2025, 8);
+  const auto pick = [&](std::uint32_t count, std::uint32_t edge) {
+    switch (rng.next_u32() % 4) {
+      case 0:
+        return std::uint32_t{0};
+      case 1:
+        return count - 1;
+      case 2:
+        return std::min(edge, count - 1);
+      default:
+        return rng.next_u32() % count;
+    }
+  };
+  constexpr std::uint32_t kLimit = 1u << 20;  // tile pixels, and samples of a pass
+  for (int trial = 0; trial < 20000; ++trial) {
+    const std::uint32_t per_pixel = 1 + pick(kLimit, 1 + rng.next_u32() % 40);
+    const int width = int(1 + pick(1024, 1 + rng.next_u32() % 40));
+    const int height = int(1 + pick(kLimit / std::uint32_t(width), 1));
+    const int x0 = int(rng.next_u32() % 32768), y0 = int(rng.next_u32() % 32768);
+    const glint::detail::PieceLayout piece{
+        {x0, y0, x0 + width, y0 + height}, int(rng.next_u32() % kLimit), per_pixel};
+    std::uint64_t n[kLaneCount];
+    for (std::uint64_t& sample : n) {
+      // A pixel at a row's start or end, a sample at a pixel's start or end, or anywhere.
+      const std::uint32_t row = pick(std::uint32_t(height), 1);
+      const std::uint32_t column = pick(std::uint32_t(width), 1);
+      sample = std::uint64_t{row * std::uint32_t(width) + column} * per_pixel + pick(per_pixel, 1);
+    }
+    glint::PixelSampleLanes lanes;
+    piece.lanes(n, lanes);
+    for (int i = 0; i < kLaneCount; ++i) {
+      INFO("trial " << trial << ": sample " << n[i] << " of " << per_pixel << " per pixel, "
+                    << width << "x" << height << " tile, lane " << i);
+      CHECK(lanes.x[i] == std::uint32_t(piece.x(n[i])));
+      CHECK(lanes.y[i] == std::uint32_t(piece.y(n[i])));
+      CHECK(lanes.index[i] == piece.index(n[i]));
     }
   }
 }

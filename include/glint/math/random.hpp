@@ -2,6 +2,7 @@
 // Random numbers that depend only on their inputs, never on the standard library or on thread
 // scheduling: images are reproducible bit for bit across compilers and thread counts.
 
+#include <concepts>
 #include <cstdint>
 
 #include "glint/math/lanes.hpp"
@@ -39,6 +40,27 @@ constexpr std::uint64_t hash_values(Ts... values) {
    ...);
   return h;
 }
+#if defined(GLINT_AVX2)
+namespace detail {
+inline Uint64Lanes hash_input(UintLanes values) {
+  return Uint64Lanes::from(values);
+}
+template <std::integral T>
+Uint64Lanes hash_input(T value) {
+  return Uint64Lanes::broadcast(static_cast<std::uint64_t>(value));
+}
+}  // namespace detail
+
+/// hash_values for eight lanes at once, lane i hashing lane i of each UintLanes argument; a
+/// scalar argument is the same in every lane. Integer arithmetic: exactly hash_values.
+template <typename... Ts>
+Uint64Lanes hash_lanes(const Ts&... values) {
+  const Uint64Lanes gamma = Uint64Lanes::broadcast(kGoldenGamma);
+  Uint64Lanes h = gamma;
+  ((h = mix_bits(h ^ (detail::hash_input(values) + gamma + (h << 6) + (h >> 2)))), ...);
+  return h;
+}
+#endif
 
 /// Maps 24 random bits to a float uniformly in [0, 1): every value is exactly representable,
 /// and 1 is never returned.
@@ -62,7 +84,7 @@ class Pcg32 {
 
   constexpr std::uint32_t next_u32() {
     const std::uint64_t old = state_;
-    state_ = old * 6364136223846793005ULL + increment_;
+    state_ = old * kMultiplier + increment_;
     const auto xorshifted = static_cast<std::uint32_t>(((old >> 18u) ^ old) >> 27u);
     const auto rot = static_cast<std::uint32_t>(old >> 59u);
     return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
@@ -83,9 +105,17 @@ class Pcg32 {
       rng.state_ = state_.lane(i);
       rng.increment_ = increment_.lane(i);
     }
+    /// Pcg32::reseed for the lanes of `mask`; the others keep their state.
+    void reseed(IntLanes mask, const Uint64Lanes& seed, const Uint64Lanes& stream) {
+      // reseed's two steps from state 0 in closed form: the first leaves the increment.
+      const Uint64Lanes increment = (stream << 1) | Uint64Lanes::broadcast(1);
+      state_ = select(mask, (increment + seed) * Uint64Lanes::broadcast(kMultiplier) + increment,
+                      state_);
+      increment_ = select(mask, increment, increment_);
+    }
     UintLanes next_u32(IntLanes mask) {
       const Uint64Lanes old = state_;
-      state_ = select(mask, old * Uint64Lanes::broadcast(6364136223846793005ULL) + increment_, old);
+      state_ = select(mask, old * Uint64Lanes::broadcast(kMultiplier) + increment_, old);
       const UintLanes xorshifted = (((old >> 18) ^ old) >> 27).low_bits();
       const UintLanes rot = (old >> 59).low_bits();
       return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
@@ -98,6 +128,8 @@ class Pcg32 {
 #endif
 
  private:
+  static constexpr std::uint64_t kMultiplier = 6364136223846793005ULL;
+
   std::uint64_t state_ = 0x853c49e6748fea9bULL;
   std::uint64_t increment_ = 0xda3e39cb94b95bdbULL;
 };

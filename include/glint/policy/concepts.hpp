@@ -22,6 +22,19 @@ struct PixelSample {
   std::uint64_t seed = 0;
 };
 
+#if defined(GLINT_AVX2)
+/// Eight PixelSamples of one render, for the wavefront renderer's lane-wise sampler start:
+/// the pixel and the sample index lane by lane; the count and the seed are the render's, the
+/// same in every lane, so that what depends on the seed alone is hashed once for the eight.
+struct PixelSampleLanes {
+  UintLanes x{};
+  UintLanes y{};
+  UintLanes index{};
+  std::uint32_t samples_per_pixel = 1;
+  std::uint64_t seed = 0;
+};
+#endif
+
 /// Where sample values come from: a stream of values in [0,1), dimension by dimension.
 template <typename S>
 concept Sampler = std::default_initializable<S> && std::copyable<S> &&

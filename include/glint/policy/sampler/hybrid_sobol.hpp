@@ -43,6 +43,13 @@ class HybridSobolSampler {
       rng_.get_lane(i, s.rng_);
       s.requests_ = requests_[i];
     }
+    /// HybridSobolSampler::start for the lanes of `mask`; the others keep their state.
+    void start(IntLanes mask, const PixelSampleLanes& s) {
+      sobol_.start(mask, s);
+      rng_.reseed(mask, hash_lanes(s.x, s.y, s.index, s.seed, 0x50b01u),
+                  Uint64Lanes::broadcast(hash_values(s.seed)));
+      requests_ = select(mask, UintLanes{}, requests_);
+    }
     FloatLanes next_1d(IntLanes mask) {
       const IntLanes sobol = mask & by_sobol();
       const IntLanes independent = mask & ~sobol;

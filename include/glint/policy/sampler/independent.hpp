@@ -25,6 +25,11 @@ class IndependentSampler {
    public:
     void set_lane(int i, const IndependentSampler& s) { rng_.set_lane(i, s.rng_); }
     void get_lane(int i, IndependentSampler& s) const { rng_.get_lane(i, s.rng_); }
+    /// IndependentSampler::start for the lanes of `mask`; the others keep their state.
+    void start(IntLanes mask, const PixelSampleLanes& s) {
+      rng_.reseed(mask, hash_lanes(s.x, s.y, s.index, s.seed),
+                  Uint64Lanes::broadcast(hash_values(s.seed)));
+    }
     FloatLanes next_1d(IntLanes mask) { return rng_.next_float(mask); }
     Vec2Lanes next_2d(IntLanes mask) {
       const FloatLanes u = rng_.next_float(mask);

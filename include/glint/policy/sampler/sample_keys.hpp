@@ -17,6 +17,12 @@ constexpr std::uint64_t pixel_key(const PixelSample& s) {
   const std::uint64_t pixel = (std::uint64_t{s.y} << 32) | s.x;
   return mix_bits(mix_bits(pixel) ^ mix_bits(s.seed + kGoldenGamma));
 }
+#if defined(GLINT_AVX2)
+inline Uint64Lanes pixel_key(const PixelSampleLanes& s) {
+  const Uint64Lanes pixel = (Uint64Lanes::from(s.y) << 32) | Uint64Lanes::from(s.x);
+  return mix_bits(mix_bits(pixel) ^ Uint64Lanes::broadcast(mix_bits(s.seed + kGoldenGamma)));
+}
+#endif
 
 /// A key for one dimension of one pixel. mix_bits is a bijection, so distinct dimensions of a
 /// pixel never share a key, and its avalanche decorrelates neighbouring ones.

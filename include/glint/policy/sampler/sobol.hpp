@@ -66,6 +66,12 @@ class SobolSampler {
       s.reversed_index_ = reversed_index_[i];
       s.dimension_ = dimension_[i];
     }
+    /// SobolSampler::start for the lanes of `mask`; the others keep their state.
+    void start(IntLanes mask, const PixelSampleLanes& s) {
+      reversed_index_ = select(mask, detail::reverse_bits(s.index), reversed_index_);
+      pixel_key_ = select(mask, detail::pixel_key(s), pixel_key_);
+      dimension_ = select(mask, UintLanes{}, dimension_);
+    }
     FloatLanes next_1d(IntLanes mask) {
       const UintLanes dimension = advance(mask);
       return to_floats(owen_scramble_reversed(shuffled_index(dimension),

@@ -92,6 +92,15 @@ concept LanewiseSampler = requires(typename S::Lanes lanes, const S& from, S& to
   { lanes.next_1d(mask) } -> std::same_as<FloatLanes>;
   { lanes.next_2d(mask) } -> std::same_as<Vec2Lanes>;
 };
+
+/// A LanewiseSampler whose Lanes form also starts the samplers of a mask's lanes at once, to
+/// the state that S::start gives each. Without it the camera stage starts them one by one and
+/// stores each in its lane.
+template <typename S>
+concept LanewiseSamplerStart = LanewiseSampler<S> &&
+    requires(typename S::Lanes lanes, IntLanes mask, PixelSampleLanes s) {
+  lanes.start(mask, s);
+};
 #endif
 
 namespace detail {
@@ -130,6 +139,49 @@ class PathSamplers<S, true> {
 };
 #endif
 
+/// Where sample number `n` of a tile's work belongs: pixel by pixel, row by row, and within
+/// a pixel samples first, first + 1, ...
+struct PieceLayout {
+  Tile tile;
+  int first;
+  std::uint64_t per_pixel;
+
+  int x(std::uint64_t n) const { return tile.x0 + int(n / per_pixel) % tile.width(); }
+  int y(std::uint64_t n) const { return tile.y0 + int(n / per_pixel) / tile.width(); }
+  std::uint32_t index(std::uint64_t n) const {
+    return std::uint32_t(std::uint64_t(first) + n % per_pixel);
+  }
+#if defined(GLINT_AVX2)
+  /// x, y and index of samples n[0] .. n[7] in SIMD lanes. The quotients are taken in
+  /// floating point and truncated: for integers with a + b below 2^p (p = 53 in a double, 24
+  /// in a float), a / b lies at least 1/b below the next integer, farther than its rounding
+  /// can carry it. Here n + per_pixel is below 2^41 (a tile has at most 2^20 pixels, a pass
+  /// at most 2^20 samples), and the pixel n / per_pixel plus the tile's width below 2^21.
+  void lanes(const std::uint64_t* n, PixelSampleLanes& sample) const {
+    using Doubles = double __attribute__((vector_size(32)));
+    Uint64Lanes samples;
+    std::memcpy(&samples.low, n, sizeof samples.low);
+    std::memcpy(&samples.high, n + 4, sizeof samples.high);
+    const auto quotient = [&](Uint64Lanes::Half half) {
+      // Without AVX-512's conversion: below 2^52, n is the mantissa of the double 2^52 + n.
+      const Doubles value = std::bit_cast<Doubles>(half | 0x4330000000000000ULL) - 0x1p52;
+      // Truncated by the instruction rather than a cast, which would be undefined where a lane
+      // outside the caller's mask holds another tile's sample and the quotient overflows.
+      return _mm256_cvttpd_epi32(__m256d(value / double(per_pixel)));
+    };
+    const auto pixel =
+        std::bit_cast<IntLanes>(_mm256_set_m128i(quotient(samples.high), quotient(samples.low)));
+    const int width = tile.width();
+    const IntLanes row = __builtin_convertvector(
+        __builtin_convertvector(pixel, FloatLanes) / float(width), IntLanes);
+    sample.x = std::bit_cast<UintLanes>(tile.x0 + pixel - row * width);
+    sample.y = std::bit_cast<UintLanes>(tile.y0 + row);
+    sample.index = std::uint32_t(first) + samples.low_bits() -
+                   std::bit_cast<UintLanes>(pixel) * std::uint32_t(per_pixel);
+  }
+#endif
+};
+
 }  // namespace detail
 
 template <RenderConfig C>
@@ -150,9 +202,12 @@ class WavefrontExecution {
   static constexpr bool kUsesLanes = LanewisePolicies<C>;
   /// Whether the samplers are kept in their Lanes form (detail::PathSamplers).
   static constexpr bool kSamplersInLanes = kUsesLanes && LanewiseSampler<SamplerType>;
+  /// Whether the camera stage starts eight samplers at once (LanewiseSamplerStart).
+  static constexpr bool kStartsInLanes = kSamplersInLanes && LanewiseSamplerStart<SamplerType>;
 #else
   static constexpr bool kUsesLanes = false;
   static constexpr bool kSamplersInLanes = false;
+  static constexpr bool kStartsInLanes = false;
 #endif
 
   /// Paths in flight per thread: enough that eight-ray batches stay full while paths end at
@@ -302,19 +357,7 @@ class WavefrontExecution {
  private:
   static constexpr std::int32_t kDirectLight = 1, kEmitterRay = 2, kEmitterVisible = 4;
 
-  /// Where sample number `n` of a tile's work belongs: pixel by pixel, row by row, and within
-  /// a pixel samples first, first + 1, ...
-  struct PieceLayout {
-    Tile tile;
-    int first;
-    std::uint64_t per_pixel;
-
-    int x(std::uint64_t n) const { return tile.x0 + int(n / per_pixel) % tile.width(); }
-    int y(std::uint64_t n) const { return tile.y0 + int(n / per_pixel) / tile.width(); }
-    std::uint32_t index(std::uint64_t n) const {
-      return std::uint32_t(std::uint64_t(first) + n % per_pixel);
-    }
-  };
+  using PieceLayout = detail::PieceLayout;
 
   static Ray ray_of(const ThreadState& state, int p) {
     return state.rays[std::size_t(p / RayBatch::kWidth)].get(p % RayBatch::kWidth);
@@ -378,16 +421,38 @@ class WavefrontExecution {
   }
 
 #if defined(GLINT_AVX2)
-  /// start_path for the lanes of `lanes` of paths base .. base+7: the sampler lane by lane,
-  /// the filter offset and the camera rays in SIMD lanes.
+  /// start_path for the lanes of `lanes` of paths base .. base+7: the samplers at once where
+  /// they can be (kStartsInLanes), else lane by lane; the filter offset and the camera rays in
+  /// SIMD lanes.
   GLINT_FLATTEN void start_lanes(ThreadState& state, int base, LaneMask lanes,
                                  const PieceLayout& piece) const {
+    const IntLanes mask = lanes_of_bits(lanes);
     Vec2Lanes film{};
-    for_each_lane(lanes, [&](int i) {
-      const Vec2 centre = start_sample(state, std::size_t(base + i), piece);
-      film.x[i] = centre.x;
-      film.y[i] = centre.y;
-    });
+    if constexpr (kStartsInLanes) {
+      PixelSampleLanes sample{.samples_per_pixel = std::uint32_t(settings_.samples_per_pixel),
+                              .seed = settings_.seed};
+      piece.lanes(&state.sample[std::size_t(base)], sample);
+      state.sampler.block(base).start(mask, sample);
+      std::int32_t* depth = &state.depth[std::size_t(base)];
+      store_lanes(depth, select(mask, broadcast(0), load_lanes(depth)));
+      if constexpr (kSamplesEmitters) {
+        // As in shade_lanes: the eight paths' BounceOrigins as one register.
+        static_assert(sizeof(Origin) == sizeof(float) && std::is_trivially_copyable_v<Origin>);
+        FloatLanes from;
+        std::memcpy(&from, &state.from[std::size_t(base)], sizeof from);
+        from = select(mask, broadcast(std::bit_cast<float>(Origin{})), from);
+        std::memcpy(static_cast<void*>(&state.from[std::size_t(base)]), &from, sizeof from);
+      }
+      // start_sample's float(x) + 0.5f: the same two roundings in SIMD lanes.
+      film = {__builtin_convertvector(std::bit_cast<IntLanes>(sample.x), FloatLanes) + 0.5f,
+              __builtin_convertvector(std::bit_cast<IntLanes>(sample.y), FloatLanes) + 0.5f};
+    } else {
+      for_each_lane(lanes, [&](int i) {
+        const Vec2 centre = start_sample(state, std::size_t(base + i), piece);
+        film.x[i] = centre.x;
+        film.y[i] = centre.y;
+      });
+    }
     if constexpr (C::antialiasing::enabled) {
       const Vec2Lanes u = SamplerBlock(state.sampler, base).next_2d(lanes);
       const Vec2Lanes offset = C::antialiasing::offset(u, settings_.antialias_sigma);
@@ -399,7 +464,6 @@ class WavefrontExecution {
     ray.t_max = broadcast(kInfinity);
     ray.origin_sphere = broadcast(std::int32_t(kNoSphere));
     ray.heads_into_origin_sphere = broadcast(0);
-    const IntLanes mask = lanes_of_bits(lanes);
     set_rays(state.rays[std::size_t(base / RayBatch::kWidth)], mask, ray);
     state.throughput.set_lanes(
         base, select(mask, Vec3Lanes::broadcast(Color(1.0f)), state.throughput.lanes(base)));
