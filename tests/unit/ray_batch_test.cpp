@@ -17,6 +17,7 @@
 #include "glint/geometry/sphere_bvh.hpp"
 #include "glint/math/random.hpp"
 #include "glint/scene/scene.hpp"
+#include "random_vectors.hpp"
 
 namespace {
 
@@ -27,17 +28,8 @@ using glint::Vec3;
 
 constexpr int kWidth = RayBatch::kWidth;
 
-float uniform(glint::Pcg32& rng, float lo, float hi) {
-  return lo + (hi - lo) * rng.next_float();
-}
-
-Vec3 unit_vector(glint::Pcg32& rng) {
-  for (;;) {
-    const Vec3 v(uniform(rng, -1.0f, 1.0f), uniform(rng, -1.0f, 1.0f), uniform(rng, -1.0f, 1.0f));
-    const float length2 = glm::dot(v, v);
-    if (length2 > 1e-4f && length2 <= 1.0f) return v / std::sqrt(length2);
-  }
-}
+using glint::test::uniform;
+using glint::test::unit_vector;
 
 std::uint32_t bits_of(float x) {
   std::uint32_t bits;

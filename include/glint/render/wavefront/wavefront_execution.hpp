@@ -10,7 +10,8 @@
 // Each path follows ChainEstimator (render/estimators/chain.hpp): the same draws from the same
 // sampler in the same order, and batched queries that answer exactly what the single-ray ones
 // do. Shading runs eight paths at a time (shade_lanes: the hit, the material, the light rays,
-// roulette and the next direction in SIMD lanes, the sampler's draws lane by lane) wherever the
+// roulette and the next direction in SIMD lanes, and the sampler's starts and draws too where it
+// has a lane-wise form: LanewiseSampler, LanewiseSamplerStart) wherever the
 // configuration's policies have lane-wise forms (LanewisePolicies) and the build has AVX2;
 // otherwise path by path with ChainEstimator's own code (shade_path). The lane-wise arithmetic
 // is not the scalar code's to the last bit (a polynomial sin and cos, other multiply-adds), so
@@ -70,8 +71,8 @@ concept WavefrontConfig =
 #if defined(GLINT_AVX2)
 /// Whether every policy the camera and shading stages call has a lane-wise form (eight values
 /// at once): then WavefrontExecution runs those stages eight paths at a time. A user's policy
-/// without one still renders, path by path. (The sampler and the sphere shading are called
-/// lane by lane.)
+/// without one still renders, path by path. (The sphere shading is called lane by lane, and so
+/// is a sampler without a Lanes form: see LanewiseSampler.)
 template <typename C>
 concept LanewisePolicies = requires(Vec2Lanes u, FloatLanes value, IntLanes depth, float sigma) {
   { C::antialiasing::offset(u, sigma) } -> std::same_as<Vec2Lanes>;
