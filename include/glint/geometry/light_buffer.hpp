@@ -14,7 +14,6 @@
 // eight, and a cell is one byte, the groups it needs.
 
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <cmath>
 #include <cstddef>

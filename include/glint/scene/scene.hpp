@@ -92,14 +92,7 @@ class Scene {
     }
     scene.hierarchy_ = SphereBvh(std::move(hierarchy_spheres));
     scene.emitters_ = EmitterTable(std::move(emitters));
-#ifdef GLINT_AVX2
-    static_assert(kLinearSceneSize <= LightBuffer::kMaxSpheres);
-    if (scene.linear_.size() >= kMinLightBufferSpheres) {
-      const std::size_t buffered = std::min(scene.lights_.size(), kMaxLightBuffers);
-      for (std::size_t i = 0; i < buffered; ++i)
-        scene.light_buffers_.emplace_back(scene.lights_[i].position, scene.linear_.columns());
-    }
-#endif
+    scene.add_light_buffers();
     return scene;
   }
 
@@ -134,40 +127,20 @@ class Scene {
     return {point, normal, normal, hit.sphere};
   }
 
-  const SurfaceProperties& surface(std::uint32_t sphere) const {
-    return surfaces_[sphere];
-  }
-  std::size_t sphere_count() const {
-    return surfaces_.size();
-  }
+  const SurfaceProperties& surface(std::uint32_t sphere) const { return surfaces_[sphere]; }
+  std::size_t sphere_count() const { return surfaces_.size(); }
   /// The line of the scene file that defined a sphere (0 if it did not come from a file).
-  int sphere_line(std::uint32_t sphere) const {
-    return sphere_lines_[sphere];
-  }
-  const std::vector<PointLight>& lights() const {
-    return lights_;
-  }
+  int sphere_line(std::uint32_t sphere) const { return sphere_lines_[sphere]; }
+  const std::vector<PointLight>& lights() const { return lights_; }
   /// The emissive spheres, for light sampling.
-  const EmitterTable& emitters() const {
-    return emitters_;
-  }
-  const CameraDescription& camera() const {
-    return camera_;
-  }
-  Color background() const {
-    return background_;
-  }
+  const EmitterTable& emitters() const { return emitters_; }
+  const CameraDescription& camera() const { return camera_; }
+  Color background() const { return background_; }
   /// The image settings and pixel filter width the scene asks for.
-  const ImageDescription& image() const {
-    return image_;
-  }
-  float antialias_sigma() const {
-    return antialias_sigma_;
-  }
+  const ImageDescription& image() const { return image_; }
+  float antialias_sigma() const { return antialias_sigma_; }
   /// The file name (or label) the scene came from, for error messages.
-  const std::string& source() const {
-    return source_;
-  }
+  const std::string& source() const { return source_; }
 
   /// closest_hit for each active lane of `rays`: its hit in `hits` (t = kInfinity and
   /// kNoSphere where there is none); returns the lanes with a hit. Exactly closest_hit's answer
@@ -358,6 +331,18 @@ class Scene {
     return avx2::any_hit(ray, hit_to_beat(ray, SphereHit{}), walls_.columns(), linear_.columns());
 #else
     return walls_.any_hit(ray) || (!linear_.empty() && linear_.any_hit(ray));
+#endif
+  }
+
+  /// Light buffers for the first kMaxLightBuffers point lights, where the linear set is large
+  /// enough for them to pay (kMinLightBufferSpheres).
+  void add_light_buffers() {
+#ifdef GLINT_AVX2
+    static_assert(kLinearSceneSize <= LightBuffer::kMaxSpheres);
+    if (linear_.size() < kMinLightBufferSpheres) return;
+    const std::size_t buffered = std::min(lights_.size(), kMaxLightBuffers);
+    for (std::size_t i = 0; i < buffered; ++i)
+      light_buffers_.emplace_back(lights_[i].position, linear_.columns());
 #endif
   }
 
