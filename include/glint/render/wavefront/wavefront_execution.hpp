@@ -765,28 +765,34 @@ class WavefrontExecution {
     const IntLanes choose_mirror = ~choose_diffuse & (u_lobe < surface.diffuse + surface.mirror);
     const IntLanes choose_transmission = ~(choose_diffuse | choose_mirror);
 
-    // Transmission: refraction, or reflection on total internal reflection or by Fresnel.
-    const FloatLanes eta_incident = select(from_inside, surface.ior, surface.ior_outside);
-    const FloatLanes eta_transmitted = select(from_inside, surface.ior_outside, surface.ior);
-    const FloatLanes eta = eta_incident / eta_transmitted;
-    const FloatLanes sin2_transmitted = eta * eta * (1.0f - cos_incident * cos_incident);
-    const IntLanes total_internal = sin2_transmitted >= 1.0f;
-    const FloatLanes cos_transmitted =
-        sqrt_lanes(max_lanes(broadcast(0.0f), 1.0f - sin2_transmitted));
     const Vec3Lanes reflected = direction + (2.0f * cos_incident) * facing;
-    const Vec3Lanes refracted =
-        normalize(eta * direction + (eta * cos_incident - cos_transmitted) * facing);
-    IntLanes reflect = total_internal;
     const LaneMask diffuse_draws = going_on & lane_bits(choose_diffuse);
     // One draw per path: the diffuse direction's or Fresnel's (never both).
     const Vec2Lanes u_diffuse = draws.next_2d(diffuse_draws);
-    if constexpr (C::fresnel::enabled) {
-      const IntLanes by_fresnel = choose_transmission & ~total_internal & surface.fully_transparent;
-      const FloatLanes reflectance =
-          C::fresnel::reflectance(cos_incident, eta_incident, eta_transmitted);
-      const LaneMask fresnel_draws = going_on & lane_bits(by_fresnel);
-      if (fresnel_draws != 0)
-        reflect |= lanes_of_bits(fresnel_draws) & (draws.next_1d(fresnel_draws) < reflectance);
+
+    // Transmission: refraction, or reflection on total internal reflection or by Fresnel
+    // (worked out only where some path transmits).
+    IntLanes reflect = broadcast(0);
+    Vec3Lanes refracted = reflected;
+    if ((going_on & lane_bits(choose_transmission)) != 0) {
+      const FloatLanes eta_incident = select(from_inside, surface.ior, surface.ior_outside);
+      const FloatLanes eta_transmitted = select(from_inside, surface.ior_outside, surface.ior);
+      const FloatLanes eta = eta_incident / eta_transmitted;
+      const FloatLanes sin2_transmitted = eta * eta * (1.0f - cos_incident * cos_incident);
+      const IntLanes total_internal = sin2_transmitted >= 1.0f;
+      const FloatLanes cos_transmitted =
+          sqrt_lanes(max_lanes(broadcast(0.0f), 1.0f - sin2_transmitted));
+      refracted = normalize(eta * direction + (eta * cos_incident - cos_transmitted) * facing);
+      reflect = total_internal;
+      if constexpr (C::fresnel::enabled) {
+        const IntLanes by_fresnel =
+            choose_transmission & ~total_internal & surface.fully_transparent;
+        const FloatLanes reflectance =
+            C::fresnel::reflectance(cos_incident, eta_incident, eta_transmitted);
+        const LaneMask fresnel_draws = going_on & lane_bits(by_fresnel);
+        if (fresnel_draws != 0)
+          reflect |= lanes_of_bits(fresnel_draws) & (draws.next_1d(fresnel_draws) < reflectance);
+      }
     }
 
     // Diffuse: a direction from C::diffuse_sampling in the frame of the facing normal.
@@ -907,17 +913,21 @@ class WavefrontExecution {
                                          .to_world(sample_uniform_cone_lanes(u, one_minus_cos_max));
     const FloatLanes cone_pdf = uniform_cone_pdf_lanes(one_minus_cos_max);
 
-    // Inside: through a uniform point of the sphere's area.
-    const Vec3Lanes area_normal = sample_uniform_sphere_lanes(u);
-    const Vec3Lanes to_light = center + radius * area_normal - point;
-    const FloatLanes light_distance2 = dot(to_light, to_light);
-    const Vec3Lanes area_direction = to_light / sqrt_lanes(light_distance2);
-    const FloatLanes area_cosine = abs_lanes(dot(area_direction, area_normal));
-    const FloatLanes area_pdf = light_distance2 / ((4.0f * kPi * radius * radius) * area_cosine);
-    const IntLanes area_valid = (light_distance2 > 0.0f) & (area_cosine > 0.0f);
-
-    const Vec3Lanes toward = select(outside, cone_direction, area_direction);
-    const FloatLanes pdf = select(outside, cone_pdf, area_pdf);
+    // Inside: through a uniform point of the sphere's area (only where some lane needs it).
+    Vec3Lanes toward = cone_direction;
+    FloatLanes pdf = cone_pdf;
+    IntLanes area_valid = broadcast(0);
+    if ((lanes & ~lane_bits(outside)) != 0) {
+      const Vec3Lanes area_normal = sample_uniform_sphere_lanes(u);
+      const Vec3Lanes to_light = center + radius * area_normal - point;
+      const FloatLanes light_distance2 = dot(to_light, to_light);
+      const Vec3Lanes area_direction = to_light / sqrt_lanes(light_distance2);
+      const FloatLanes area_cosine = abs_lanes(dot(area_direction, area_normal));
+      const FloatLanes area_pdf = light_distance2 / ((4.0f * kPi * radius * radius) * area_cosine);
+      area_valid = (light_distance2 > 0.0f) & (area_cosine > 0.0f);
+      toward = select(outside, cone_direction, area_direction);
+      pdf = select(outside, cone_pdf, area_pdf);
+    }
     const FloatLanes cosine = dot(toward, facing);
     const Vec3Lanes reflected =
         select(cosine > 0.0f, albedo * (kInvPi * cosine), Vec3Lanes::broadcast(Color(0.0f)));
