@@ -1,8 +1,8 @@
-// Whole-render cost of every named variant (glint::variants::all) on the small scenes of
-// bench/scenes: one benchmark per (scene, variant, execution model), each iteration one 64x64
-// frame at 4 spp, depth 12, on one worker thread. Compare a variant with `report` on the same
-// scene; the quality side of the trade (error at equal time and at equal samples) is
-// bench/run-all's.
+// Whole-render cost of every named variant the build compiled (glint::compiled::Variants: all of
+// them unless GLINT_RENDERER_VARIANTS chose fewer) on the small scenes of bench/scenes: one
+// benchmark per (scene, variant, execution model), each iteration one 64x64 frame at 4 spp,
+// depth 12, on one worker thread. Compare a variant with `report` on the same scene; the quality
+// side of the trade (error at equal time and at equal samples) is bench/run-all's.
 //
 // Names: render/SCENE/VARIANT/MODEL, MODEL `scalar` (Renderer) for every variant and, next to it
 // in the same run, `wavefront` (WavefrontRenderer) for each chain variant (WavefrontConfig), so
@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "glint/glint.hpp"
+#include "glint_renderers.hpp"  // the renderers, compiled once in glint-renderers
 
 namespace {
 
@@ -147,7 +148,9 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  glint::variants::for_each([&]<typename V>() { register_variant<V>(scenes); });
+  [&]<typename... V>(std::tuple<V...>*) {
+    (register_variant<V>(scenes), ...);
+  }(static_cast<glint::compiled::Variants*>(nullptr));
   benchmark::AddCustomContext("frame", "64x64, 4 spp, depth 12, 1 worker thread, seed 0");
   benchmark::AddCustomContext("scenes", scene_directory.string());
   benchmark::RunSpecifiedBenchmarks();

@@ -2,6 +2,7 @@
 # cmake/list_variants.cpp, so that no CMake file or script keeps a copy of it. Sets
 #   GLINT_VARIANTS         the variant names, in the order of glint::variants::all
 #   GLINT_DEFAULT_VARIANT  the variant glint-render (without a suffix) is built with
+#   GLINT_WAVEFRONT_VARIANTS  the variants that also have the wavefront renderer
 # and writes ${PROJECT_BINARY_DIR}/variants.tsv (the program's output) for bench/run-all.
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
   ${PROJECT_SOURCE_DIR}/include/glint/variants.hpp ${PROJECT_SOURCE_DIR}/cmake/list_variants.cpp)
@@ -19,12 +20,15 @@ endif()
 file(WRITE ${PROJECT_BINARY_DIR}/variants.tsv "${glint_variants_tsv}")
 set(GLINT_VARIANTS)
 set(GLINT_DEFAULT_VARIANT)
+set(GLINT_WAVEFRONT_VARIANTS)
 string(REPLACE "\n" ";" glint_variant_lines "${glint_variants_tsv}")
 foreach(line IN LISTS glint_variant_lines)
   if(line MATCHES "^variant\t([a-z0-9_]+)\t")
     list(APPEND GLINT_VARIANTS ${CMAKE_MATCH_1})
   elseif(line MATCHES "^default\t([a-z0-9_]+)$")
     set(GLINT_DEFAULT_VARIANT ${CMAKE_MATCH_1})
+  elseif(line MATCHES "^renderer\t([a-z0-9_]+)\twavefront$")
+    list(APPEND GLINT_WAVEFRONT_VARIANTS ${CMAKE_MATCH_1})
   endif()
 endforeach()
 if(NOT GLINT_VARIANTS OR NOT GLINT_DEFAULT_VARIANT)

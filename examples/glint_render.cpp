@@ -1,7 +1,8 @@
 // glint-render: renders a scene file with one renderer variant, chosen when this file is
-// compiled (GLINT_VARIANT names a type of glint::variants, e.g. -DGLINT_VARIANT=report). One
-// executable per variant keeps each translation unit to a single variant (with its two renderers
-// for a chain variant: the wavefront one by default, the scalar one with --scalar). Its options,
+// compiled: GLINT_VARIANT names a type of glint::variants (e.g. -DGLINT_VARIANT=report, or a file
+// that defines it and includes this one), the default variant where it is not defined. One
+// executable per variant, each linking its variant's renderers (two for a chain variant: the
+// wavefront one by default, the scalar one with --scalar) from the glint-renderers library. Its options,
 // outputs, signals, checkpoints, scene loading and execution model are render_command.hpp's,
 // shared with glint-render-mpi and compiled once (the glint-cli library); this file only
 // renders the built scene with the variant's renderer (render_variant.hpp).

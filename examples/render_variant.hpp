@@ -9,6 +9,7 @@
 #include "glint/render/renderer.hpp"
 #include "glint/render/wavefront/wavefront_renderer.hpp"
 #include "glint/variants.hpp"
+#include "glint_renderers.hpp"  // the renderers, compiled once in glint-renderers
 #include "render_command.hpp"
 
 // GLINT_VARIANT names the type of glint::variants the program renders with (e.g.

@@ -8,7 +8,8 @@ add_executable(glint-cli-tests ${CMAKE_CURRENT_LIST_DIR}/progress_printer_test.c
                                ${CMAKE_CURRENT_LIST_DIR}/cpu_check_test.cpp)
 target_include_directories(glint-cli-tests PRIVATE ${PROJECT_SOURCE_DIR}/examples)
 target_link_libraries(glint-cli-tests PRIVATE glint::glint glint_project_options glint_catch_main)
-catch_discover_tests(glint-cli-tests TEST_PREFIX "cli: " PROPERTIES LABELS cli)
+catch_discover_tests(glint-cli-tests TEST_PREFIX "cli: "
+                     PROPERTIES LABELS cli TIMEOUT ${GLINT_TEST_TIMEOUT})
 
 if(NOT TARGET glint-render)
   return()
@@ -208,6 +209,9 @@ if(GLINT_BASH)
                      $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
                      ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli SKIP_RETURN_CODE 77)
+    if(case MATCHES "^checkpoint_")
+      set_tests_properties("cli: ${name}" PROPERTIES LABELS "cli;long")
+    endif()
     if(GLINT_SANITIZE)
       set_tests_properties("cli: ${name}" PROPERTIES ENVIRONMENT GLINT_LONG_RENDER_SIZE=160x120)
     endif()

@@ -9,10 +9,6 @@ if(NOT GLINT_BASH)
   message(STATUS "glint: no bash, so no docs test")
   return()
 endif()
-if(NOT GLINT_BUILD_EXAMPLES)
-  # examples/ writes ${PROJECT_BINARY_DIR}/variants.tsv; without it, write it here.
-  include(${PROJECT_SOURCE_DIR}/cmake/GlintVariants.cmake)
-endif()
 add_test(NAME "docs: README variant tables match variants.hpp"
          COMMAND ${GLINT_BASH} ${PROJECT_SOURCE_DIR}/scripts/update-readme --check
                  --build-dir ${PROJECT_BINARY_DIR})

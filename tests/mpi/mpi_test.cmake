@@ -35,3 +35,5 @@ glint_mpi_test(bad-option bad_option)
 glint_mpi_test(killed-rank killed_rank)
 glint_mpi_test(sigusr1 stopped USR1 138)
 glint_mpi_test(sigterm stopped TERM any)
+set_tests_properties("mpi: killed-rank" "mpi: sigusr1" "mpi: sigterm" PROPERTIES
+                     LABELS "mpi;long")

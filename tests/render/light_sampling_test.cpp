@@ -16,8 +16,7 @@
 #include <vector>
 
 #include "glint/io/scene_reader.hpp"
-#include "glint/render/renderer.hpp"
-#include "glint/variants.hpp"
+#include "renderer_types.hpp"
 
 using glint::Color;
 using glint::Vec2;
@@ -26,7 +25,7 @@ namespace {
 
 // The report's tree and the one-lobe chain, with camera rays through pixel centres (each pixel
 // sees one point, which the tests below rely on); fixed depth and uniform hemisphere bounces.
-using Tree = glint::variants::report::with_antialiasing<glint::NoAntialiasing>;
+using Tree = glint::variants::no_antialiasing;
 using Chain = Tree::with_material_model<glint::StochasticMaterialModel>;
 
 template <typename C>
@@ -37,8 +36,11 @@ using BalanceMis =
     typename C::template with_light_sampling<glint::EmitterSampling<glint::BalanceHeuristic>>;
 template <typename C>
 using LightOnly = typename C::template with_light_sampling<glint::EmitterSamplingOnly>;
+/// C itself where it already finds emitters by bounces only (a named variant stays one).
 template <typename C>
-using BouncesOnly = typename C::template with_light_sampling<glint::PointLightsOnly>;
+using BouncesOnly =
+    std::conditional_t<std::is_same_v<typename C::light_sampling, glint::PointLightsOnly>, C,
+                       typename C::template with_light_sampling<glint::PointLightsOnly>>;
 
 glint::Scene build(const std::string& text, const char* label) {
   return glint::Scene::build(glint::read_scene_text(text, label));
@@ -453,7 +455,7 @@ sphere     center=3,-2,1 radius=5 transparent=1 ior=1.5
 )",
                                    "glass furnace");
   int chain_variants = 0, with_roulette = 0;
-  glint::variants::for_each([&]<typename V>() {
+  glint_test::for_each_compiled_variant([&]<typename V>() {
     if constexpr (std::is_same_v<typename V::material_model, glint::StochasticMaterialModel>) {
       ++chain_variants;
       if (V::path_termination::uses_roulette) ++with_roulette;

@@ -60,8 +60,8 @@ glint::Film one_shot(const glint::Scene& scene, const glint::RenderSettings& set
   glint::Film film(settings.width, settings.height);
   for (int y = 0; y < settings.height; ++y)
     for (int x = 0; x < settings.width; ++x)
-      film.at(x, y) =
-          glint::Renderer<V>::render_pixel(tracer, camera, settings, x, y, counters, samples);
+      film.at(x, y) = glint::ScalarExecution<V>::render_pixel(tracer, camera, settings, x, y,
+                                                              counters, samples);
   return film;
 }
 

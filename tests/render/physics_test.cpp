@@ -380,8 +380,7 @@ TEMPLATE_LIST_TEST_CASE("the near clipping plane hides what is in front of it", 
 }
 
 namespace {
-using UniformOnly = glint::Config<glint::IndependentSampler, glint::ReportMaterialModel,
-                                  glint::NoFresnel, glint::NoAntialiasing, glint::UniformShading>;
+using UniformOnly = glint::variants::uniform_shading;
 }
 
 TEST_CASE("a shading kind the variant lacks is rejected when rendering", "[render][physics]") {

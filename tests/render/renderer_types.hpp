@@ -1,21 +1,18 @@
 #pragma once
-// The renderers the render tests run: every named variant with the scalar execution
-// (Renderer<V>), and every chain variant also with the wavefront one (WavefrontRenderer<V>), so
+// The renderers the render tests run: every variant the build compiled (glint::compiled::Variants,
+// all the named variants unless the build chose fewer) with the scalar execution (Renderer<V>),
+// and every chain variant among them also with the wavefront one (WavefrontRenderer<V>), so
 // that a physical check written once holds for both execution models.
 //
-// Each of them is compiled once, in renderer_slice_*.cpp, rather than in every test file that
-// renders with it: the tests call render_by<R>, which for these renderers only declares what
-// those files define. (Compiled in each of a dozen files, they were most of the build of the
-// render tests, and under the sanitizers most of CI's time.)
+// They come compiled from the glint-renderers library (cmake/GlintRenderers.cmake): its header
+// declares them extern, so a test that renders with them compiles none of them. A test's own
+// configuration is compiled where the test uses it.
 
-#include <cstddef>
 #include <string>
 #include <tuple>
 #include <type_traits>
 
-#include "glint/render/renderer.hpp"
-#include "glint/render/wavefront/wavefront_renderer.hpp"
-#include "glint/variants.hpp"
+#include "glint_renderers.hpp"
 
 namespace glint_test {
 
@@ -35,41 +32,25 @@ auto renderers_of(std::tuple<V...>*)
     -> decltype(std::tuple_cat(std::tuple<glint::Renderer<V>...>{},
                                typename WavefrontOf<V>::type{}...));
 
-/// Renderer<V> for every V of variants::all, then WavefrontRenderer<V> for the chain ones.
-using AllRenderers = decltype(renderers_of(static_cast<glint::variants::all*>(nullptr)));
-static_assert(std::tuple_size_v<AllRenderers> > std::tuple_size_v<glint::variants::all>);
+/// Renderer<V> for every compiled variant V, then WavefrontRenderer<V> for the chain ones.
+using AllRenderers = decltype(renderers_of(static_cast<glint::compiled::Variants*>(nullptr)));
+static_assert(std::tuple_size_v<AllRenderers> > std::tuple_size_v<glint::compiled::Variants>);
 
-template <typename R, typename List>
-inline constexpr bool kIsOneOf = false;
-template <typename R, typename... Rs>
-inline constexpr bool kIsOneOf<R, std::tuple<Rs...>> = (std::is_same_v<R, Rs> || ...);
+/// Calls `visit.template operator()<V>()` for each compiled variant V, in order.
+template <typename Visit>
+void for_each_compiled_variant(Visit&& visit) {
+  [&]<typename... V>(std::tuple<V...>*) {
+    (visit.template operator()<V>(), ...);
+  }(static_cast<glint::compiled::Variants*>(nullptr));
+}
 
-/// Renderers the renderer_slice_*.cpp files compile.
-template <typename R>
-concept Precompiled = kIsOneOf<R, AllRenderers>;
-
-/// The test programs' build splits AllRenderers into this many files (renderer_slice_0.cpp
-/// and on): renderer i is compiled by slice i % kRendererSlices. A slice file missing is an
-/// undefined symbol when the tests link.
-inline constexpr std::size_t kRendererSlices = 4;
-
-/// R::render(scene, settings, control, from), defined for each Precompiled R by its slice.
-template <Precompiled R>
-glint::RenderResult precompiled_render(const glint::Scene& scene,
-                                       const glint::RenderSettings& settings,
-                                       const glint::RenderControl& control,
-                                       const glint::RenderStart& from);
-
-/// R::render(scene, settings, control, from) for any renderer R: compiled by a slice file for
-/// the Precompiled ones, here for the others (a test's own variant).
+/// R::render(scene, settings, control, from): compiled by glint-renderers for the named
+/// variants, here for a test's own configuration.
 template <typename R>
 glint::RenderResult render_by(const glint::Scene& scene, const glint::RenderSettings& settings,
                               const glint::RenderControl& control = {},
                               const glint::RenderStart& from = {}) {
-  if constexpr (Precompiled<R>)
-    return precompiled_render<R>(scene, settings, control, from);
-  else
-    return R::render(scene, settings, control, from);
+  return R::render(scene, settings, control, from);
 }
 
 /// render_by with only a progress callback, as R::render(scene, settings, progress).

@@ -91,18 +91,10 @@ inline RenderSettings small_settings(const SceneDescription& d, int size, int sp
   return s;
 }
 
-/// Renders with the variant called `variant`.
-inline Film render_with(const std::string& variant, const SceneDescription& description,
-                        const RenderSettings& settings) {
-  const Scene scene = Scene::build(description);
-  RenderResult result;
-  const bool known = variants::visit_by_name(
-      variant, [&]<typename V>() { result = glint_test::render_by<Renderer<V>>(scene, settings); });
-  INFO("variant " << variant);
-  REQUIRE(known);
-  CHECK(result.stats.invalid_samples == 0);
-  return std::move(result.film);
-}
+/// Renders with the variant called `variant`, one of those variant_model knows (defined once,
+/// in shipped_scenes.cpp, for the four files that use it).
+Film render_with(const std::string& variant, const SceneDescription& description,
+                 const RenderSettings& settings);
 
 /// What the model must know of a named variant to predict its image: its pixel filter and
 /// whether glass has Fresnel reflection. Spelled out here for the variants the shipped scenes

@@ -5,9 +5,9 @@
 // next samples of every pixel to that pixel's running sum, so after every pass the sums hold
 // a complete image of k samples per pixel, and a render can stop there. A pixel's samples are
 // added in index order into one double sum (image/pixel_sums.hpp) that lives between passes,
-// then divided once by their count: exactly render_pixel's arithmetic, so the finished image
-// does not depend on the passes. Within a pass, square tiles are handed out by one atomic counter;
-// each tile's pixels are written by the one thread that took it, and every sample's
+// then divided once by their count: exactly ScalarExecution::render_pixel's arithmetic, so the
+// finished image does not depend on the passes. Within a pass, square tiles are handed out by one
+// atomic counter; each tile's pixels are written by the one thread that took it, and every sample's
 // randomness comes from hashing (pixel, sample index, seed). So the image is the same bit for
 // bit whatever the thread count or scheduling. The hot loop has no locks, no allocation, no
 // virtual calls and no exceptions; threads meet only between passes. How a thread renders a
@@ -116,6 +116,25 @@ concept TileWorkSource = requires(S& source, const TileWork& work) {
   source.finished(work);
 };
 
+/// Any TileWorkSource, by reference: what the compiled form of render_tiles takes, so that one
+/// instantiation of a renderer serves every source. Its calls are one per tile, not per sample.
+class TileWorkSourceRef {
+ public:
+  template <TileWorkSource S>
+  requires(!std::same_as<S, TileWorkSourceRef>) explicit TileWorkSourceRef(S& source)
+      : source_(&source),
+        next_([](void* s) { return static_cast<S*>(s)->next(); }),
+        finished_([](void* s, const TileWork& work) { static_cast<S*>(s)->finished(work); }) {}
+
+  std::optional<TileWork> next() { return next_(source_); }
+  void finished(const TileWork& work) { finished_(source_, work); }
+
+ private:
+  void* source_;
+  std::optional<TileWork> (*next_)(void*);
+  void (*finished_)(void*, const TileWork&);
+};
+
 inline Film PassReport::image() const {
   return mean_image(sums, samples_per_pixel).film;
 }
@@ -171,82 +190,7 @@ class Renderer {
   /// a stop request honoured between passes; `from` may begin it after some passes (resuming a
   /// checkpoint). Also throws SettingsError for a start that does not fit the settings.
   static RenderResult render(const Scene& scene, const RenderSettings& settings,
-                             const RenderControl& control, const RenderStart& from = {}) {
-    validate(settings);
-    check_supported<C>(scene);
-    check_work<C>(scene, settings.max_depth);
-    const auto start = std::chrono::steady_clock::now();
-    const auto elapsed = [&] {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    };
-
-    const std::vector<int> ends = pass_ends(settings.samples_per_pixel, settings.max_pass_samples);
-    const std::size_t first_pass = check_start(from, settings, ends.size());
-
-    PixelSums sums = from.sums ? *from.sums : PixelSums(settings.width, settings.height);
-    RenderResult result{
-        {}, {}, first_pass ? ends[first_pass - 1] : 0, int(first_pass), int(ends.size())};
-    const E execution(scene, settings);
-
-    const TileGrid grid(settings);
-    const int thread_count = threads_for(settings, grid.count);
-    const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
-
-    Schedule schedule(grid.count, ends, first_pass);
-    std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
-    std::vector<typename E::ThreadState> states = thread_states(execution, thread_count);
-    {
-      std::vector<std::jthread> workers;
-      // Declared after the workers so that it runs before they are joined: on any way out
-      // (a callback that throws included) no worker is left waiting for a pass.
-      const StopWorkersOnExit stop_workers{schedule};
-      start_threads(workers, thread_count, [&](int t) {
-        work(schedule, grid, execution, states[std::size_t(t)], sums, counters[std::size_t(t)]);
-      });
-
-      const std::uint64_t samples_at_start = pixels * std::uint64_t(result.samples_per_pixel);
-      const auto report = [&](bool last) {
-        if (!control.progress) return;
-        std::uint64_t done = samples_at_start;
-        for (const PaddedCounters& c : counters)
-          done += c.samples.load(std::memory_order_relaxed);
-        const int spp_done = result.passes_done ? ends[std::size_t(result.passes_done) - 1] : 0;
-        control.progress(RenderProgress{done, pixels * std::uint64_t(settings.samples_per_pixel),
-                                        elapsed(), result.passes_done, result.pass_count, spp_done,
-                                        last, samples_at_start});
-      };
-      for (std::size_t pass = first_pass; pass < ends.size(); ++pass) {
-        if (control.stop && control.stop->load(std::memory_order_relaxed)) break;
-        schedule.release(pass);
-        while (!schedule.wait_for_pass(pass, progress_interval))
-          report(false);
-        result.passes_done = int(pass) + 1;
-        result.samples_per_pixel = ends[pass];
-        if (pass + 1 < ends.size()) report(false);
-        if (control.pass_done &&
-            !control.pass_done(PassReport{result.passes_done, result.pass_count,
-                                          result.samples_per_pixel, elapsed(), sums}))
-          break;
-      }
-      report(true);
-    }  // the workers are told to stop, and join here
-
-    if (result.samples_per_pixel > 0) {
-      MeanImage image = mean_image(sums, result.samples_per_pixel);
-      result.film = std::move(image.film);
-      result.stats.clamped_pixels = image.clamped_pixels;
-    } else {
-      result.film = Film(settings.width, settings.height);
-    }
-    for (const PaddedCounters& c : counters) {
-      result.stats.rays += c.counters.rays;
-      result.stats.invalid_samples += c.counters.invalid_samples;
-    }
-    result.stats.samples = pixels * std::uint64_t(result.samples_per_pixel);
-    result.stats.threads = thread_count;
-    result.stats.seconds = elapsed();
-    return result;
-  }
+                             const RenderControl& control, const RenderStart& from = {});
 
   /// Renders the work `source` hands out on settings.threads threads (0: one per hardware thread;
   /// never more than there are tiles), adding each piece's samples to `sums` (of the settings'
@@ -260,65 +204,11 @@ class Renderer {
   template <TileWorkSource Source>
   static RenderStats render_tiles(const Scene& scene, const RenderSettings& settings,
                                   PixelSums& sums, Source& source) {
-    validate(settings);
-    check_supported<C>(scene);
-    check_work<C>(scene, settings.max_depth);
-    if (sums.width() != settings.width || sums.height() != settings.height)
-      throw SettingsError("glint: sums of " + std::to_string(sums.width()) + "x" +
-                          std::to_string(sums.height()) + " pixels for an image of " +
-                          std::to_string(settings.width) + "x" + std::to_string(settings.height));
-    const auto start = std::chrono::steady_clock::now();
-    const E execution(scene, settings);
-    const TileGrid grid(settings);
-    const int thread_count = threads_for(settings, grid.count);
-    std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
-    std::vector<typename E::ThreadState> states = thread_states(execution, thread_count);
-    {
-      // Declared before the threads, so that it outlives them: each reads it until it ends.
-      StartGate gate;
-      std::vector<std::jthread> threads;
-      try {
-        start_threads(threads, thread_count, [&](int t) {
-          if (gate.wait())
-            work(source, grid, execution, states[std::size_t(t)], sums, counters[std::size_t(t)]);
-        });
-      } catch (...) {
-        gate.close();  // the threads already started end, without asking for work, and join
-        throw;
-      }
-      gate.open();
-    }
-    RenderStats stats;
-    for (const PaddedCounters& c : counters) {
-      stats.rays += c.counters.rays;
-      stats.invalid_samples += c.counters.invalid_samples;
-      stats.samples += c.samples.load(std::memory_order_relaxed);
-    }
-    stats.threads = thread_count;
-    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return stats;
+    return render_tiles(scene, settings, sums, TileWorkSourceRef(source));
   }
-
-  /// One pixel's estimate: the mean of its samples, summed in one go. Exposed for tests and
-  /// benchmarks; render's passes give the same bits (with the scalar execution).
-  static Color render_pixel(const PathTracer<C>& tracer, const Camera& camera,
-                            const RenderSettings& settings, int x, int y,
-                            TraceCounters& counters) requires std::same_as<E, ScalarExecution<C>> {
-    return render_pixel(tracer, camera, settings, x, y, counters, settings.samples_per_pixel);
-  }
-
-  /// The mean of the pixel's first `samples` samples of a render with these settings: what a
-  /// render stopped when `samples` samples per pixel were done holds.
-  static Color render_pixel(const PathTracer<C>& tracer, const Camera& camera,
-                            const RenderSettings& settings, int x, int y, TraceCounters& counters,
-                            int samples) requires std::same_as<E, ScalarExecution<C>> {
-    std::atomic<std::uint64_t> progress{0};
-    std::uint64_t done = 0;
-    const ColorSum sum = ScalarExecution<C>::add_samples(tracer, camera, settings, x, y, 0, samples,
-                                                         ColorSum(0.0), counters, progress, done);
-    bool out_of_range = false;
-    return mean_color(sum, samples, out_of_range);
-  }
+  /// render_tiles for any source: the form a compiled renderer holds.
+  static RenderStats render_tiles(const Scene& scene, const RenderSettings& settings,
+                                  PixelSums& sums, TileWorkSourceRef source);
 
  private:
   /// The pass to begin with; throws SettingsError for a start that cannot belong to a render
@@ -490,5 +380,131 @@ class Renderer {
     }
   }
 };
+
+// The renderer's work is defined outside the class: an explicit instantiation declaration
+// (`extern template class Renderer<...>;`) then keeps a translation unit from compiling it, so
+// that a program can compile each of its renderers once, in a file of its own (glint's own
+// programs do: cmake/GlintRenderers.cmake).
+
+template <RenderConfig C, Execution E>
+RenderResult Renderer<C, E>::render(const Scene& scene, const RenderSettings& settings,
+                                    const RenderControl& control, const RenderStart& from) {
+  validate(settings);
+  check_supported<C>(scene);
+  check_work<C>(scene, settings.max_depth);
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+
+  const std::vector<int> ends = pass_ends(settings.samples_per_pixel, settings.max_pass_samples);
+  const std::size_t first_pass = check_start(from, settings, ends.size());
+
+  PixelSums sums = from.sums ? *from.sums : PixelSums(settings.width, settings.height);
+  RenderResult result{
+      {}, {}, first_pass ? ends[first_pass - 1] : 0, int(first_pass), int(ends.size())};
+  const E execution(scene, settings);
+
+  const TileGrid grid(settings);
+  const int thread_count = threads_for(settings, grid.count);
+  const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
+
+  Schedule schedule(grid.count, ends, first_pass);
+  std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
+  std::vector<typename E::ThreadState> states = thread_states(execution, thread_count);
+  {
+    std::vector<std::jthread> workers;
+    // Declared after the workers so that it runs before they are joined: on any way out
+    // (a callback that throws included) no worker is left waiting for a pass.
+    const StopWorkersOnExit stop_workers{schedule};
+    start_threads(workers, thread_count, [&](int t) {
+      work(schedule, grid, execution, states[std::size_t(t)], sums, counters[std::size_t(t)]);
+    });
+
+    const std::uint64_t samples_at_start = pixels * std::uint64_t(result.samples_per_pixel);
+    const auto report = [&](bool last) {
+      if (!control.progress) return;
+      std::uint64_t done = samples_at_start;
+      for (const PaddedCounters& c : counters)
+        done += c.samples.load(std::memory_order_relaxed);
+      const int spp_done = result.passes_done ? ends[std::size_t(result.passes_done) - 1] : 0;
+      control.progress(RenderProgress{done, pixels * std::uint64_t(settings.samples_per_pixel),
+                                      elapsed(), result.passes_done, result.pass_count, spp_done,
+                                      last, samples_at_start});
+    };
+    for (std::size_t pass = first_pass; pass < ends.size(); ++pass) {
+      if (control.stop && control.stop->load(std::memory_order_relaxed)) break;
+      schedule.release(pass);
+      while (!schedule.wait_for_pass(pass, progress_interval))
+        report(false);
+      result.passes_done = int(pass) + 1;
+      result.samples_per_pixel = ends[pass];
+      if (pass + 1 < ends.size()) report(false);
+      if (control.pass_done &&
+          !control.pass_done(PassReport{result.passes_done, result.pass_count,
+                                        result.samples_per_pixel, elapsed(), sums}))
+        break;
+    }
+    report(true);
+  }  // the workers are told to stop, and join here
+
+  if (result.samples_per_pixel > 0) {
+    MeanImage image = mean_image(sums, result.samples_per_pixel);
+    result.film = std::move(image.film);
+    result.stats.clamped_pixels = image.clamped_pixels;
+  } else {
+    result.film = Film(settings.width, settings.height);
+  }
+  for (const PaddedCounters& c : counters) {
+    result.stats.rays += c.counters.rays;
+    result.stats.invalid_samples += c.counters.invalid_samples;
+  }
+  result.stats.samples = pixels * std::uint64_t(result.samples_per_pixel);
+  result.stats.threads = thread_count;
+  result.stats.seconds = elapsed();
+  return result;
+}
+
+template <RenderConfig C, Execution E>
+RenderStats Renderer<C, E>::render_tiles(const Scene& scene, const RenderSettings& settings,
+                                         PixelSums& sums, TileWorkSourceRef source) {
+  validate(settings);
+  check_supported<C>(scene);
+  check_work<C>(scene, settings.max_depth);
+  if (sums.width() != settings.width || sums.height() != settings.height)
+    throw SettingsError("glint: sums of " + std::to_string(sums.width()) + "x" +
+                        std::to_string(sums.height()) + " pixels for an image of " +
+                        std::to_string(settings.width) + "x" + std::to_string(settings.height));
+  const auto start = std::chrono::steady_clock::now();
+  const E execution(scene, settings);
+  const TileGrid grid(settings);
+  const int thread_count = threads_for(settings, grid.count);
+  std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
+  std::vector<typename E::ThreadState> states = thread_states(execution, thread_count);
+  {
+    // Declared before the threads, so that it outlives them: each reads it until it ends.
+    StartGate gate;
+    std::vector<std::jthread> threads;
+    try {
+      start_threads(threads, thread_count, [&](int t) {
+        if (gate.wait())
+          work(source, grid, execution, states[std::size_t(t)], sums, counters[std::size_t(t)]);
+      });
+    } catch (...) {
+      gate.close();  // the threads already started end, without asking for work, and join
+      throw;
+    }
+    gate.open();
+  }
+  RenderStats stats;
+  for (const PaddedCounters& c : counters) {
+    stats.rays += c.counters.rays;
+    stats.invalid_samples += c.counters.invalid_samples;
+    stats.samples += c.samples.load(std::memory_order_relaxed);
+  }
+  stats.threads = thread_count;
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
 
 }  // namespace glint

@@ -61,6 +61,13 @@ class ScalarExecution {
                                     counters, progress, samples);
   }
 
+  /// The mean of the first `samples` samples of pixel (x, y) of a render with these settings,
+  /// summed in one go: what a render stopped when `samples` samples per pixel were done holds,
+  /// bit for bit. Exposed for tests.
+  static Color render_pixel(const PathTracer<C>& tracer, const Camera& camera,
+                            const RenderSettings& settings, int x, int y, TraceCounters& counters,
+                            int samples);
+
   /// `sum` plus samples [first, last) of pixel (x, y), in index order; a sample that is not
   /// finite is counted as invalid instead. `samples` counts them, published in `progress`. The one
   /// definition of a pixel's sum, shared by render and render_pixel so that both give the same
@@ -102,5 +109,19 @@ class ScalarExecution {
   PathTracer<C> tracer_;
   RenderSettings settings_;
 };
+
+// Out of the class, so that an explicit instantiation declaration of ScalarExecution<C> keeps
+// other translation units from compiling it (see Renderer::render).
+template <RenderConfig C>
+Color ScalarExecution<C>::render_pixel(const PathTracer<C>& tracer, const Camera& camera,
+                                       const RenderSettings& settings, int x, int y,
+                                       TraceCounters& counters, int samples) {
+  std::atomic<std::uint64_t> progress{0};
+  std::uint64_t done = 0;
+  const ColorSum sum = add_samples(tracer, camera, settings, x, y, 0, samples, ColorSum(0.0),
+                                   counters, progress, done);
+  bool out_of_range = false;
+  return mean_color(sum, samples, out_of_range);
+}
 
 }  // namespace glint
