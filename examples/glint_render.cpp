@@ -2,10 +2,10 @@
 // compiled: GLINT_VARIANT names a type of glint::variants (e.g. -DGLINT_VARIANT=report, or a file
 // that defines it and includes this one), the default variant where it is not defined. One
 // executable per variant, each linking its variant's renderers (two for a chain variant: the
-// wavefront one by default, the scalar one with --scalar) from the glint-renderers library. Its options,
-// outputs, signals, checkpoints, scene loading and execution model are render_command.hpp's,
-// shared with glint-render-mpi and compiled once (the glint-cli library); this file only
-// renders the built scene with the variant's renderer (render_variant.hpp).
+// wavefront one by default, the scalar one with --scalar) from the glint-renderers library. Its
+// options, outputs, signals, checkpoints, scene loading and execution model are
+// render_command.hpp's, shared with glint-render-mpi and compiled once (the glint-cli library);
+// this file only renders the built scene with the variant's renderer (render_variant.hpp).
 
 #include <csignal>
 #include <iostream>
@@ -30,7 +30,9 @@ constexpr glint::cli::Program kProgram{
     R"(Progress with an estimated time left goes to stderr while rendering, then one summary line.
 The image is rendered in passes (1 sample per pixel, 2, 4, ... then 32 more at a time): the
 first SIGINT, SIGTERM or SIGHUP stops after the current pass and writes the image of the
-passes done, saying how many samples per pixel it holds; a second one exits at once.
+passes done, saying how many samples per pixel it holds; a second one exits at once (the
+same signal again within a second is the same stop: timeout and other supervisors signal
+the process and then its process group).
 Outputs are checked before rendering and written to new temporary files beside them, renamed
 into place only when all were written.
 Exit status: 0 on success (--time-limit included), 1 for a bad scene, an unwritable output,

@@ -74,7 +74,9 @@ hands out the tiles, prints the progress and writes the outputs (paths are rank 
 naming the ranks and threads, and a line with each rank's idle time and the bytes sent.
 The image is rendered in passes (1 sample per pixel, 2, 4, ... then 32 more at a time): the
 first SIGINT, SIGTERM, SIGHUP or SIGUSR1 stops after the current pass and writes the image of
-the passes done, saying how many samples per pixel it holds; a second one exits at once.
+the passes done, saying how many samples per pixel it holds; a second one exits at once (the
+same signal again within a second is the same stop: timeout and other supervisors signal
+the process and then its process group).
 Open MPI's mpirun passes SIGUSR1 on to every rank as it is, but answers SIGINT and SIGTERM by
 sending SIGTERM to every rank and SIGKILL about a second later: the image is then written only
 if the current pass ends in that time. To stop a long pass, send mpirun SIGUSR1.

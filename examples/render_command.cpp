@@ -6,6 +6,7 @@
 #include "render_command.hpp"
 
 #include <pthread.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include <climits>
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -263,12 +265,20 @@ std::string help_text(const Program& program) {
 // What the handler shares with the program: only lock-free atomics and fixed buffers, written
 // with the signals blocked, so that the handler reads them whole.
 
-static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free);
+static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free &&
+              std::atomic<std::int64_t>::is_always_lock_free);
 std::atomic<bool> stop_requested{false};
 
 namespace {
 
-std::atomic<int> stop_signal{0};    ///< the first stop signal received, or 0
+std::atomic<int> stop_signal{0};  ///< the first stop signal received, or 0
+/// When the first stop signal came (CLOCK_MONOTONIC, nanoseconds); 0 until its handler has
+/// noted it.
+std::atomic<std::int64_t> first_stop_time{0};
+/// The same signal again within this time of the first is the same stop, not a second one:
+/// `timeout`, systemd and job schedulers signal the process and then its process group, so
+/// the process gets two copies at once.
+constexpr std::int64_t kRepeatedSignalWindow = 1'000'000'000;
 constexpr int kMaxTemporaries = 4;  // the PNG, the PFM, the EXR and the checkpoint
 char temporaries[kMaxTemporaries][PATH_MAX];
 std::atomic<int> temporary_count{0};
@@ -324,15 +334,25 @@ struct ForgetTemporaries {
 }  // namespace
 
 extern "C" void on_stop_signal(int signal) {
-  // Async-signal-safe only: atomics, unlink, write and _exit.
-  if (stop_signal.exchange(signal) != 0) {
-    for (int i = 0, n = temporary_count.load(); i < n; ++i)
-      unlink(temporaries[i]);
-    [[maybe_unused]] const ssize_t written =
-        write(STDERR_FILENO, second_signal_message, second_signal_message_size);
-    _exit(128 + signal);
+  // Async-signal-safe only: atomics, clock_gettime, unlink, write and _exit.
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  const std::int64_t time = std::int64_t(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
+  int first = 0;
+  if (stop_signal.compare_exchange_strong(first, signal)) {
+    first_stop_time.store(std::max<std::int64_t>(time, 1));
+    stop_requested.store(true);
+    return;
   }
-  stop_requested.store(true);
+  // The same signal while the first one's handler is still noting its time, or soon after it:
+  // another copy of the same stop.
+  const std::int64_t first_time = first_stop_time.load();
+  if (first == signal && (first_time == 0 || time - first_time < kRepeatedSignalWindow)) return;
+  for (int i = 0, n = temporary_count.load(); i < n; ++i)
+    unlink(temporaries[i]);
+  [[maybe_unused]] const ssize_t written =
+      write(STDERR_FILENO, second_signal_message, second_signal_message_size);
+  _exit(128 + signal);
 }
 
 void install_signal_handlers(const char* program, std::span<const int> signals) {

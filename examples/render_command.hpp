@@ -89,7 +89,8 @@ std::string help_text(const Program& program);
 
 // --- Stop signals -------------------------------------------------------------------------
 // The first stop signal stops after the current pass and writes the image of the passes done;
-// a second one exits at once.
+// a second one exits at once: another signal, or the same one a second or more after the first
+// (supervisors such as `timeout` send the process and its process group one copy each).
 
 /// Set by the first stop signal: the render's RenderControl::stop.
 extern std::atomic<bool> stop_requested;

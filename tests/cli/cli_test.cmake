@@ -192,14 +192,15 @@ glint_cli_progress_test(progress-default-variant glint-render "[a-z_]+, (wavefro
                         -o out.png --width 160 --height 96 --spp 3 --max-depth 2 --threads 1)
 
 # Long renders (tests/cli/long_render_test.bash): the first SIGINT, SIGTERM or SIGHUP writes
-# the image of the completed passes, a second one exits at once; planted symbolic links are
+# the image of the completed passes, a second one exits at once, and a supervisor's copies of
+# one signal (to the process and its group: `timeout`) are one stop; planted symbolic links are
 # never followed; all outputs or none; outputs refused before rendering; threads that cannot
 # start; checkpoints resumed to the uninterrupted bytes (after SIGINT, or SIGKILL after a
 # checkpoint between passes), checkpoints of other renders refused; --time-limit. Status 77:
 # the case cannot run here (a read-only directory does not stop root).
 find_program(GLINT_BASH bash)
 if(GLINT_BASH)
-  foreach(case sigint sigterm sighup second_signal sigint_quiet planted_symlinks
+  foreach(case sigint sigterm sighup group_signal timeout second_signal sigint_quiet planted_symlinks
           hdr_fails_while_writing hdr_is_directory output_is_directory read_only_directory
           scene_is_output threads_fail checkpoint_resume checkpoint_after_kill resume_refused
           time_limit_zero huge_values)
@@ -209,7 +210,7 @@ if(GLINT_BASH)
                      $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
                      ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli SKIP_RETURN_CODE 77)
-    if(case MATCHES "^checkpoint_")
+    if(case MATCHES "^(checkpoint_|group_signal)")
       set_tests_properties("cli: ${name}" PROPERTIES LABELS "cli;long")
     endif()
     if(GLINT_SANITIZE)

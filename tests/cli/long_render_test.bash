@@ -101,8 +101,55 @@ case_sigint() { interrupted_once INT 130; }
 case_sigterm() { interrupted_once TERM 143; }
 case_sighup() { interrupted_once HUP 129; }
 
+# A supervisor's stop: SIGTERM to the process and at once to its process group (the job
+# control of start_long_render makes the render its group's leader), as `timeout`, systemd and
+# job schedulers send it. The two copies are one stop: the image is written, every time.
+case_group_signal() {
+  local run
+  for run in 1 2 3; do
+    start_long_render
+    kill -s TERM "$pid"
+    kill -s TERM -- "-$pid"
+    wait "$pid"
+    local status=$?
+    ((status == 143)) || fail "run $run: exit status $status, expected 143"
+    grep -q "^glint-render: stopped by SIGTERM: out\.png holds" err.log ||
+      fail "run $run: no stop message"
+    complete_png out.png
+    complete_pfm out.pfm "$long_width" "$long_height"
+    no_temporaries
+    rm -f out.png out.pfm
+  done
+}
+
+# GNU timeout stopping the render: told to stop (here by a SIGTERM of its own, once the render
+# is under way, rather than after a time that depends on the machine), it sends SIGTERM to the
+# render and then to the render's process group, and exits with the render's status.
+case_timeout() {
+  command -v timeout >/dev/null || exit 77
+  set -m
+  timeout 600 "$program" "$scene" "${long_render[@]}" 2>err.log &
+  local timeout_pid=$!
+  set +m
+  until grep -q '^\[ *[1-9][0-9]%\]' err.log; do
+    kill -0 "$timeout_pid" 2>/dev/null ||
+      { wait "$timeout_pid"; fail "timeout ended (status $?) before 10%"; }
+    sleep 0.05
+  done
+  kill -s TERM "$timeout_pid"
+  wait "$timeout_pid"
+  local status=$?
+  ((status == 143)) || fail "exit status $status, expected 143"
+  grep -q "^glint-render: stopped by SIGTERM: out\.png holds" err.log || fail "no stop message"
+  ! grep -q "a second stop signal" err.log || fail "timeout's two copies of SIGTERM were two stops"
+  complete_png out.png
+  complete_pfm out.pfm "$long_width" "$long_height"
+  no_temporaries
+}
+
 # A second signal ends the run at once: nothing written, no temporary left. Two different
-# signals, because a second SIGINT sent before the first is delivered would merge with it.
+# signals: a second SIGINT sent before the first is delivered would merge with it, and one
+# within a second of the first is taken as another copy of the same stop.
 case_second_signal() {
   start_long_render
   kill -s INT "$pid"
