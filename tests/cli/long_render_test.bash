@@ -59,12 +59,16 @@ long_render=(--width "$long_width" --height "$long_height" --spp 1024 --max-dept
              -o out.png --hdr out.pfm)
 
 # Starts a long render in the background (stderr is a file, so progress comes as a line per
-# tenth) and returns once a progress line shows at least 10% done.
+# tenth) and returns once a progress line shows at least 10% done; $pid is the process started,
+# glint-render itself or, with the command `launcher` set, that command running it.
+launcher=()
 start_long_render() {
   # Job control: a background job of a script would otherwise ignore SIGINT, and glint-render
   # keeps an ignored SIGINT ignored (as nohup and `&` expect).
+  # Emptied here, before the render starts: the loop below must not read an earlier run's log.
+  : >err.log
   set -m
-  "$program" "$scene" "${long_render[@]}" "$@" 2>err.log &
+  "${launcher[@]}" "$program" "$scene" "${long_render[@]}" "$@" 2>err.log &
   pid=$!
   set +m
   until grep -q '^\[ *[1-9][0-9]%\]' err.log; do
@@ -127,17 +131,10 @@ case_group_signal() {
 # render and then to the render's process group, and exits with the render's status.
 case_timeout() {
   command -v timeout >/dev/null || exit 77
-  set -m
-  timeout 600 "$program" "$scene" "${long_render[@]}" 2>err.log &
-  local timeout_pid=$!
-  set +m
-  until grep -q '^\[ *[1-9][0-9]%\]' err.log; do
-    kill -0 "$timeout_pid" 2>/dev/null ||
-      { wait "$timeout_pid"; fail "timeout ended (status $?) before 10%"; }
-    sleep 0.05
-  done
-  kill -s TERM "$timeout_pid"
-  wait "$timeout_pid"
+  launcher=(timeout 600)
+  start_long_render
+  kill -s TERM "$pid"
+  wait "$pid"
   local status=$?
   ((status == 143)) || fail "exit status $status, expected 143"
   grep -q "^glint-render: stopped by SIGTERM: out\.png holds" err.log || fail "no stop message"
