@@ -5,8 +5,9 @@
 // emissive enclosure in furnaces, and lossless glass in a furnace, which must come out exactly
 // one on every sample (Russian roulette never kills a path that loses nothing).
 //
-// Statistical checks use fixed seeds, so they are deterministic; their thresholds are five
-// standard errors, estimated from many independent pixels or seeds (a normal tail of 6e-7).
+// Statistical checks use fixed seeds, so they are deterministic. The pixel checks allow five
+// standard errors, estimated from many independent pixels (a normal tail of 6e-7); the image
+// comparisons are judged as families at the suite's false-alarm budget (block_statistics.hpp).
 
 #include <array>
 #include <catch2/catch.hpp>
@@ -15,6 +16,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "block_statistics.hpp"
 #include "glint/io/scene_reader.hpp"
 #include "renderer_types.hpp"
 
@@ -243,31 +245,12 @@ sphere     center=10,-6,33 radius=1.5 diffuse=0 emission=8,8,16
 sphere     center=2,4,-12 radius=5 diffuse=0.5 mirror=0.5 color=0.9,0.6,0.2
 )";
 
-constexpr int kSeeds = 48;
-constexpr int kBlock = 4;
-constexpr int kBlocksPerSide = 4;
-constexpr int kBlocks = kBlocksPerSide * kBlocksPerSide;
-
-/// Each block's mean radiance (sum of channels), one value per seed.
-using PerSeedBlocks = std::array<std::vector<double>, kBlocks>;
-
+/// Each block's mean radiance per seed: kReplicates renders of the room at its own settings,
+/// with seeds first_seed, first_seed + 1, ...
 template <typename C>
-PerSeedBlocks render_blocks(const glint::Scene& scene) {
-  PerSeedBlocks per_seed;
-  glint::RenderSettings settings = glint::RenderSettings::from(scene);
-  for (int seed = 0; seed < kSeeds; ++seed) {
-    settings.seed = std::uint64_t(seed) + 1000;
-    const glint::Film film = render<C>(scene, settings);
-    std::array<double, kBlocks> sums{};
-    for (int y = 0; y < settings.height; ++y)
-      for (int x = 0; x < settings.width; ++x) {
-        const Color& c = film.at(x, y);
-        sums[std::size_t((y / kBlock) * kBlocksPerSide + x / kBlock)] += c.x + c.y + c.z;
-      }
-    for (std::size_t b = 0; b < sums.size(); ++b)
-      per_seed[b].push_back(sums[b] / (kBlock * kBlock));
-  }
-  return per_seed;
+glint_test::BlockSamples render_blocks(const glint::Scene& scene, std::uint64_t first_seed = 1000) {
+  return glint_test::render_blocks<glint::Renderer<C>>(scene, first_seed,
+                                                       glint::RenderSettings::from(scene));
 }
 
 const glint::Scene& room() {
@@ -277,61 +260,42 @@ const glint::Scene& room() {
 
 /// The references: MIS with the power heuristic, the least noisy, on each estimator.
 template <typename Model>
-const PerSeedBlocks& reference_blocks() {
-  static const PerSeedBlocks reference = render_blocks<PowerMis<Model>>(room());
+const glint_test::BlockSamples& reference_blocks() {
+  static const glint_test::BlockSamples reference = render_blocks<PowerMis<Model>>(room());
   return reference;
 }
 
-/// Compares two renders seed by seed. With the same seed, estimators that differ only in
-/// their weights follow the same paths (the sampler's requests do not depend on the policy),
-/// so their difference is far less noisy than either: its standard error, from the spread of
-/// the 48 per-seed differences (independent, since the seeds are), is valid whether the two
-/// are correlated or not, and much smaller than treating them as independent would give.
-void check_agreement(const PerSeedBlocks& reference, const PerSeedBlocks& candidate,
-                     const char* name) {
-  double total = 0.0;
-  for (std::size_t b = 0; b < kBlocks; ++b) {
-    std::vector<double> difference;
-    for (int s = 0; s < kSeeds; ++s)
-      difference.push_back(candidate[b][std::size_t(s)] - reference[b][std::size_t(s)]);
-    const MeanAndError d = statistics(difference);
-    const MeanAndError r = statistics(reference[b]);
-    // Five standard errors of the mean difference. Each comes from 48 seeds, so the ratio is
-    // close to a normal variable (Student's t with 47 degrees of freedom: tail 1e-5 at 5),
-    // and over the 16 blocks of the 7 comparisons a correct implementation fails with
-    // probability about 1e-3. The relative 1e-5 covers float rounding where two estimators
-    // compute the same value in different orders.
-    const double tolerance = 5.0 * d.standard_error + 1e-5 * r.mean;
-    INFO(name << ", block " << b << ": reference " << r.mean << " +- " << r.standard_error
-              << ", difference " << d.mean << " +- " << d.standard_error);
-    CHECK(std::abs(d.mean) <= tolerance);
-    total += r.mean;
-  }
-  CHECK(total > 1.0);  // the room is lit: the comparison is not between zeros
-}
-
+/// Compares C with its estimator's reference seed by seed. With the same seed, estimators that
+/// differ only in their weights follow the same paths (the sampler's requests do not depend on
+/// the policy), so their difference is far less noisy than either (compare_paired).
 template <typename Model, typename C>
-void check_agrees_with_reference(const char* name) {
-  check_agreement(reference_blocks<Model>(), render_blocks<C>(room()), name);
+void compare_with_reference(glint_test::ComparisonFamily& family, const char* name) {
+  CHECK(glint_test::compare_paired(family, name, reference_blocks<Model>(),
+                                   render_blocks<C>(room())) > 0.05);  // the room is lit
 }
 
 }  // namespace
 
 TEST_CASE("light sampling: bounces only, light samples only and MIS render the same room (tree)",
           "[render][light][statistical]") {
-  check_agrees_with_reference<Tree, BouncesOnly<Tree>>("tree, bounces only");
-  check_agrees_with_reference<Tree, LightOnly<Tree>>("tree, light samples only");
-  check_agrees_with_reference<Tree, BalanceMis<Tree>>("tree, balance heuristic");
+  glint_test::ComparisonFamily family;
+  compare_with_reference<Tree, BouncesOnly<Tree>>(family, "tree, bounces only");
+  compare_with_reference<Tree, LightOnly<Tree>>(family, "tree, light samples only");
+  compare_with_reference<Tree, BalanceMis<Tree>>(family, "tree, balance heuristic");
+  family.check();
 }
 
 TEST_CASE("light sampling: bounces only, light samples only and MIS render the same room (chain)",
           "[render][light][statistical]") {
-  check_agrees_with_reference<Chain, BouncesOnly<Chain>>("chain, bounces only");
-  check_agrees_with_reference<Chain, LightOnly<Chain>>("chain, light samples only");
-  check_agrees_with_reference<Chain, BalanceMis<Chain>>("chain, balance heuristic");
-  // And the two estimators with each other (independent paths: the difference is as noisy as
-  // both together).
-  check_agreement(reference_blocks<Tree>(), reference_blocks<Chain>(), "chain against tree");
+  glint_test::ComparisonFamily family;
+  compare_with_reference<Chain, BouncesOnly<Chain>>(family, "chain, bounces only");
+  compare_with_reference<Chain, LightOnly<Chain>>(family, "chain, light samples only");
+  compare_with_reference<Chain, BalanceMis<Chain>>(family, "chain, balance heuristic");
+  // And the two estimators with each other: their paths differ, so they are compared as
+  // independent estimates, made with other seeds.
+  glint_test::compare_independent(family, "chain against tree", reference_blocks<Tree>(),
+                                  render_blocks<PowerMis<Chain>>(room(), 2000));
+  family.check();
 }
 
 // ---- furnaces ------------------------------------------------------------------------------

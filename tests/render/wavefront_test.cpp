@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <type_traits>
@@ -26,6 +27,9 @@
 namespace {
 
 namespace fs = std::filesystem;
+
+/// Samples per pixel of each of the kReplicates renders of the statistical comparison.
+constexpr int kSamplesPerRender = 8;
 
 /// Every compiled chain variant, the ones WavefrontRenderer renders.
 template <typename... V>
@@ -102,27 +106,32 @@ glint::Scene mixed_scene() {
 
 TEMPLATE_LIST_TEST_CASE("wavefront and scalar renderers estimate the same image",
                         "[render][statistical][wavefront]", WavefrontConfigs) {
-  // Seeds 100.. for the scalar renderer and 200.. for the wavefront one: independent estimates.
+  // Seeds 100.. for the scalar renderer and 1100.. for the wavefront one: independent
+  // estimates. Every comparison of the configuration, over all scenes, is one family.
   std::vector<fs::path> files = comparison_scenes();
   REQUIRE(files.size() >= 20);
+  glint_test::ComparisonFamily family;
   for (const fs::path& file : files) {
     const glint::Scene scene = glint::Scene::build(glint::read_scene_file(file.string()));
     if (!glint::is_supported<TestType>(scene)) continue;
-    glint::RenderSettings settings = glint::RenderSettings::from(scene);
-    settings.samples_per_pixel = 16;
-    INFO(TestType::info.name << " on " << file.filename().string());
-    const glint_test::BlockStatistics scalar =
-        glint_test::render_blocks<glint::Renderer<TestType>>(scene, 100, settings);
-    const glint_test::BlockStatistics wavefront =
-        glint_test::render_blocks<glint::WavefrontRenderer<TestType>>(scene, 200, settings);
-    CHECK(glint_test::check_blocks_agree(scalar, wavefront) > 0.0);
+    std::ostringstream what;
+    what << TestType::info.name << " on " << file.filename().string();
+    CHECK(glint_test::compare_independent(
+              family, what.str(),
+              glint_test::render_blocks<glint::Renderer<TestType>>(scene, 100, kSamplesPerRender),
+              glint_test::render_blocks<glint::WavefrontRenderer<TestType>>(
+                  scene, 1100, kSamplesPerRender)) > 0.0);
   }
   const glint::Scene mixed = mixed_scene();
-  INFO(TestType::info.name << " on the mixed scene");
-  const double lit = glint_test::check_blocks_agree(
-      glint_test::render_blocks<glint::Renderer<TestType>>(mixed, 100),
-      glint_test::render_blocks<glint::WavefrontRenderer<TestType>>(mixed, 200));
-  CHECK(lit > 1.0);
+  std::ostringstream what;
+  what << TestType::info.name << " on the mixed scene";
+  const double lit = glint_test::compare_independent(
+      family, what.str(),
+      glint_test::render_blocks<glint::Renderer<TestType>>(mixed, 100, kSamplesPerRender),
+      glint_test::render_blocks<glint::WavefrontRenderer<TestType>>(mixed, 1100,
+                                                                    kSamplesPerRender));
+  CHECK(lit > 0.05);
+  family.check();
 }
 
 TEMPLATE_LIST_TEST_CASE("with the same seed, the wavefront follows the scalar renderer's paths",
