@@ -1,9 +1,7 @@
-// The eight-lane arithmetic of the wavefront renderer's shading (math/lanes.hpp) and the
-// lane-wise forms of the warps and policies: sin and cos against the double-precision library
-// over the warps' angles, the NaN and signed-zero rules of min, max, copysign and select, and
-// each lane-wise warp or policy against its scalar form, lane by lane, over grids and random
-// inputs that include the edge cases (total internal reflection, zero and infinite densities,
-// NaN throughput).
+// What AVX2 adds to the eight-lane width for the wavefront renderer (math/lanes.hpp): masks as
+// bits, transposes, the packing of lanes into queues, 64-bit lanes; and the lane-wise forms
+// that are not yet written once for every width (the camera's rays, the samplers), against
+// their scalar forms lane by lane. What is written once is checked in wide_test.cpp.
 
 #include <algorithm>
 #include <bit>
@@ -46,17 +44,6 @@ FloatLanes lanes_of(const float (&values)[kLaneCount]) {
   return glint::load_lanes(values);
 }
 
-/// Eight uniform pairs from a generator.
-Vec2Lanes uniform_pairs(glint::Pcg32& rng, Vec2 (&pairs)[kLaneCount]) {
-  Vec2Lanes u{};
-  for (int i = 0; i < kLaneCount; ++i) {
-    pairs[i] = {rng.next_float(), rng.next_float()};
-    u.x[i] = pairs[i].x;
-    u.y[i] = pairs[i].y;
-  }
-  return u;
-}
-
 bool same_bits(float a, float b) {
   return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
 }
@@ -70,52 +57,10 @@ void check_close(const Vec3& lane, const Vec3& scalar, float tolerance) {
 
 }  // namespace
 
-TEST_CASE("sincos_lanes is within 2e-7 of sin and cos from 0 to 2 pi, and close beyond",
-          "[lanes][unit]") {
-  double worst = 0.0;
-  const int steps = 1 << 16;
-  for (int k = 0; k <= steps; k += kLaneCount) {
-    FloatLanes x{};
-    for (int i = 0; i < kLaneCount; ++i)
-      x[i] = float(2.0 * M_PI * double(k + i) / steps);
-    FloatLanes s, c;
-    glint::sincos_lanes(x, s, c);
-    for (int i = 0; i < kLaneCount; ++i) {
-      worst = std::max(worst, std::abs(double(s[i]) - std::sin(double(x[i]))));
-      worst = std::max(worst, std::abs(double(c[i]) - std::cos(double(x[i]))));
-    }
-  }
-  CHECK(worst <= 2e-7);
-  // The quadrant boundaries exactly, and larger angles.
-  const float edges[kLaneCount] = {
-      0.0f,   float(M_PI / 4), float(M_PI / 2), float(M_PI), float(1.5 * M_PI), float(2 * M_PI),
-      100.0f, 1000.0f};
-  FloatLanes s, c;
-  glint::sincos_lanes(lanes_of(edges), s, c);
-  for (int i = 0; i < kLaneCount; ++i) {
-    INFO("x = " << edges[i]);
-    CHECK(std::abs(double(s[i]) - std::sin(double(edges[i]))) <= 1e-6);
-    CHECK(std::abs(double(c[i]) - std::cos(double(edges[i]))) <= 1e-6);
-  }
-  CHECK(same_bits(s[0], 0.0f));
-  CHECK(same_bits(c[0], 1.0f));
-}
-
-TEST_CASE("lane min, max, select and copysign follow the scalar rules, NaN and -0 included",
-          "[lanes][unit]") {
+TEST_CASE("lane masks and their bits", "[lanes][unit]") {
   const float a_values[kLaneCount] = {1.0f, -2.0f, kNaN, 3.0f, kNaN, -0.0f, 0.0f, kInf};
   const float b_values[kLaneCount] = {2.0f, -3.0f, 1.0f, kNaN, kNaN, 0.0f, -0.0f, -kInf};
   const FloatLanes a = lanes_of(a_values), b = lanes_of(b_values);
-  const FloatLanes low = glint::min_lanes(a, b), high = glint::max_lanes(a, b);
-  const FloatLanes sign = glint::copysign_lanes(b, a);
-  const FloatLanes magnitude = glint::abs_lanes(a);
-  for (int i = 0; i < kLaneCount; ++i) {
-    INFO("a = " << a_values[i] << ", b = " << b_values[i]);
-    CHECK(same_bits(low[i], std::min(a_values[i], b_values[i])));
-    CHECK(same_bits(high[i], std::max(a_values[i], b_values[i])));
-    CHECK(same_bits(sign[i], std::copysign(b_values[i], a_values[i])));
-    CHECK(same_bits(magnitude[i], std::fabs(a_values[i])));
-  }
   const IntLanes mask = glint::lanes_of_bits(0b10100101u);
   CHECK(glint::lane_bits(mask) == 0b10100101u);
   const FloatLanes chosen = glint::select(mask, a, b);
@@ -192,149 +137,6 @@ TEST_CASE("Uint64Lanes gives each lane's low and high 32 bits", "[lanes][unit]")
     for (int i = 0; i < kLaneCount; ++i) {
       CHECK(low[i] == std::uint32_t(expected[i]));
       CHECK(high[i] == std::uint32_t(expected[i] >> 32));
-    }
-  }
-}
-
-TEST_CASE("lane-wise warps and frames agree with the scalar ones", "[lanes][unit]") {
-  glint::Pcg32 rng(7, 11);
-  for (int round = 0; round < 4096; ++round) {
-    Vec2 pairs[kLaneCount];
-    const Vec2Lanes u = uniform_pairs(rng, pairs);
-    FloatLanes cone{};
-    for (int i = 0; i < kLaneCount; ++i)
-      cone[i] = i == 0 ? 1e-7f : (i == 1 ? 2.0f : rng.next_float() * 2.0f);
-    const Vec3Lanes uniform = glint::sample_uniform_hemisphere_lanes(u);
-    const Vec3Lanes cosine = glint::sample_cosine_hemisphere_lanes(u);
-    const Vec3Lanes sphere = glint::sample_uniform_sphere_lanes(u);
-    const Vec3Lanes in_cone = glint::sample_uniform_cone_lanes(u, cone);
-    const FloatLanes cone_pdf = glint::uniform_cone_pdf_lanes(cone);
-    const glint::FrameLanes frame = glint::FrameLanes::around(sphere);
-    const Vec3Lanes world = frame.to_world(cosine);
-    for (int i = 0; i < kLaneCount; ++i) {
-      check_close(uniform.lane(i), glint::sample_uniform_hemisphere(pairs[i]), 1e-6f);
-      check_close(cosine.lane(i), glint::sample_cosine_hemisphere(pairs[i]), 1e-6f);
-      check_close(sphere.lane(i), glint::sample_uniform_sphere(pairs[i]), 1e-6f);
-      check_close(in_cone.lane(i), glint::sample_uniform_cone(pairs[i], cone[i]), 1e-6f);
-      CHECK(cone_pdf[i] == Approx(glint::uniform_cone_pdf(cone[i])).epsilon(1e-6));
-      const glint::Frame scalar_frame = glint::Frame::around(sphere.lane(i));
-      check_close(world.lane(i), scalar_frame.to_world(cosine.lane(i)), 2e-6f);
-    }
-  }
-}
-
-TEMPLATE_TEST_CASE("lane-wise diffuse sampling agrees with the scalar policy", "[lanes][unit]",
-                   glint::UniformHemisphere, glint::CosineHemisphere) {
-  glint::Pcg32 rng(3, 5);
-  for (int round = 0; round < 1024; ++round) {
-    Vec2 pairs[kLaneCount];
-    const glint::DirectionSampleLanes lanes = TestType::sample(uniform_pairs(rng, pairs));
-    const FloatLanes cosines = lanes.local_direction.z - 0.5f;  // some at or below zero
-    const FloatLanes pdf = TestType::pdf(cosines);
-    for (int i = 0; i < kLaneCount; ++i) {
-      const glint::DirectionSample scalar = TestType::sample(pairs[i]);
-      check_close(lanes.local_direction.lane(i), scalar.local_direction, 1e-6f);
-      CHECK(lanes.weight[i] == Approx(scalar.weight).epsilon(1e-5).margin(1e-6));
-      CHECK(pdf[i] == Approx(TestType::pdf(cosines[i])).epsilon(1e-6));
-    }
-  }
-}
-
-TEMPLATE_TEST_CASE(
-    "lane-wise Fresnel agrees with the scalar policy, total internal reflection "
-    "included",
-    "[lanes][unit]", glint::NoFresnel, glint::ExactFresnel, glint::SchlickFresnel) {
-  const float etas[][2] = {{1.0f, 1.5f}, {1.5f, 1.0f}, {1.33f, 1.5f}, {2.4f, 1.0f}, {1.0f, 1.0f}};
-  for (const auto& eta : etas)
-    for (int k = 0; k <= 1024; k += kLaneCount) {
-      FloatLanes cosine{};
-      for (int i = 0; i < kLaneCount; ++i)
-        cosine[i] = float(k + i) / 1024.0f;
-      const FloatLanes lanes =
-          TestType::reflectance(cosine, glint::broadcast(eta[0]), glint::broadcast(eta[1]));
-      for (int i = 0; i < kLaneCount; ++i) {
-        INFO("cos " << cosine[i] << ", eta " << eta[0] << " / " << eta[1]);
-        CHECK(lanes[i] ==
-              Approx(TestType::reflectance(cosine[i], eta[0], eta[1])).margin(2e-6).epsilon(1e-5));
-      }
-    }
-}
-
-TEMPLATE_TEST_CASE("lane-wise MIS weights agree with the scalar heuristics at every edge",
-                   "[lanes][unit]", glint::BalanceHeuristic, glint::PowerHeuristic) {
-  const float pdfs[kLaneCount] = {0.0f, -1.0f, kNaN, kInf, 1e-30f, 0.5f, 3.0f, 1e30f};
-  const float others[] = {0.0f, 1e-30f, 0.5f, 3.0f, 1e30f, kInf, kNaN, 1.0f};
-  for (float other : others) {
-    const FloatLanes lanes = TestType::weight(lanes_of(pdfs), glint::broadcast(other));
-    for (int i = 0; i < kLaneCount; ++i) {
-      const float scalar = TestType::weight(pdfs[i], other);
-      INFO("pdf " << pdfs[i] << ", other " << other << ": scalar " << scalar);
-      if (std::isnan(scalar))
-        CHECK(std::isnan(lanes[i]));
-      else
-        CHECK(lanes[i] == Approx(scalar).epsilon(1e-6));
-    }
-  }
-  using Sampling = glint::EmitterSampling<TestType>;
-  CHECK(Sampling::light_weight(glint::broadcast(2.0f), glint::broadcast(1.0f))[3] ==
-        Approx(Sampling::light_weight(2.0f, 1.0f)));
-}
-
-TEMPLATE_TEST_CASE("lane-wise path termination agrees with the scalar policy", "[lanes][unit]",
-                   glint::FixedDepth, glint::RussianRoulette) {
-  const float throughputs[kLaneCount] = {0.0f, 0.25f, 0.999f, 1.0f, 7.0f, kNaN, kInf, 1e-30f};
-  for (int depth = 0; depth < 6; ++depth) {
-    const FloatLanes lanes =
-        TestType::continue_probability(glint::broadcast(depth), lanes_of(throughputs));
-    for (int i = 0; i < kLaneCount; ++i)
-      CHECK(same_bits(lanes[i], TestType::continue_probability(depth, throughputs[i])));
-  }
-}
-
-TEST_CASE("log_lanes is within 3e-7 of log, relative, from 1e-30 to 3e30", "[lanes][unit]") {
-  double worst = 0.0;
-  glint::Pcg32 rng(1, 2);
-  for (int round = 0; round < 1 << 14; ++round) {
-    FloatLanes x{};
-    for (int i = 0; i < kLaneCount; ++i)
-      x[i] = i == 0 ? 1.0f - rng.next_float() : std::ldexp(1.0f - rng.next_float(), i * 9 - 30);
-    const FloatLanes y = glint::log_lanes(x);
-    for (int i = 0; i < kLaneCount; ++i) {
-      const double exact = std::log(double(x[i]));
-      worst = std::max(worst, std::abs(double(y[i]) - exact) / std::max(1.0, std::abs(exact)));
-    }
-  }
-  CHECK(worst <= 3e-7);
-  const float edges[kLaneCount] = {1.0f,        0.5f,        2.0f,   0x1p-24f,
-                                   0.70710677f, 0.70710683f, 1e-30f, 3e30f};
-  const FloatLanes y = glint::log_lanes(lanes_of(edges));
-  for (int i = 0; i < kLaneCount; ++i) {
-    INFO("x = " << edges[i]);
-    CHECK(double(y[i]) == Approx(std::log(double(edges[i]))).epsilon(3e-7).margin(1e-7));
-  }
-  CHECK(y[0] == 0.0f);
-}
-
-TEMPLATE_TEST_CASE("lane-wise pixel filter offsets agree with the scalar policy", "[lanes][unit]",
-                   glint::NoAntialiasing, glint::GaussianAntialiasing, glint::BoxAntialiasing,
-                   glint::TentAntialiasing) {
-  glint::Pcg32 rng(9, 4);
-  for (int round = 0; round < 4096; ++round) {
-    Vec2 pairs[kLaneCount];
-    Vec2Lanes u = uniform_pairs(rng, pairs);
-    if (round == 0) {  // the ends of [0, 1)
-      for (int i = 0; i < kLaneCount; ++i) {
-        pairs[i] = {i < 4 ? 0.0f : 0x1.fffffep-1f, (i & 1) ? 0.5f : 0.0f};
-        u.x[i] = pairs[i].x;
-        u.y[i] = pairs[i].y;
-      }
-    }
-    const Vec2Lanes lanes = TestType::offset(u, 0.7f);
-    for (int i = 0; i < kLaneCount; ++i) {
-      const Vec2 scalar = TestType::offset(pairs[i], 0.7f);
-      INFO("u = " << pairs[i].x << ", " << pairs[i].y);
-      CHECK(lanes.x[i] == Approx(scalar.x).epsilon(1e-5).margin(1e-6));
-      CHECK(lanes.y[i] == Approx(scalar.y).epsilon(1e-5).margin(1e-6));
     }
   }
 }

@@ -155,7 +155,7 @@ void check_on_hemisphere(const HemisphereSamples& s) {
 TEST_CASE("uniform hemisphere: cos(theta) uniform, phi uniform, pdf 1/(2 pi)",
           "[sampling][statistical]") {
   const int n = 1 << 18;
-  const HemisphereSamples s = draw_hemisphere(glint::sample_uniform_hemisphere, n, 17);
+  const HemisphereSamples s = draw_hemisphere(glint::sample_uniform_hemisphere<glint::Vec2>, n, 17);
   check_on_hemisphere(s);
   // Uniform on the hemisphere: dω = d(cos θ) dφ, so cos θ ~ U[0,1] and φ ~ U[0,2π).
   const int bins = 64;
@@ -176,7 +176,7 @@ TEST_CASE("uniform hemisphere: cos(theta) uniform, phi uniform, pdf 1/(2 pi)",
 TEST_CASE("cosine hemisphere: cos(theta) has density 2 cos, phi uniform",
           "[sampling][statistical]") {
   const int n = 1 << 18;
-  const HemisphereSamples s = draw_hemisphere(glint::sample_cosine_hemisphere, n, 23);
+  const HemisphereSamples s = draw_hemisphere(glint::sample_cosine_hemisphere<glint::Vec2>, n, 23);
   check_on_hemisphere(s);
   // pdf(ω) = cos θ / π, so cos θ has density 2 cos θ on [0, 1]: CDF cos²θ.
   const int bins = 64;
@@ -186,7 +186,8 @@ TEST_CASE("cosine hemisphere: cos(theta) has density 2 cos, phi uniform",
   CHECK(glint::test::chi_square_equiprobable(s.phi01, bins, [](double p) { return p; }) <
         threshold);
   // The uniform-hemisphere samples must fail this test: the test can tell them apart.
-  const HemisphereSamples uniform = draw_hemisphere(glint::sample_uniform_hemisphere, n, 23);
+  const HemisphereSamples uniform =
+      draw_hemisphere(glint::sample_uniform_hemisphere<glint::Vec2>, n, 23);
   CHECK(glint::test::chi_square_equiprobable(uniform.cos_theta, bins,
                                              [](double c) { return c * c; }) > 100.0 * threshold);
 }

@@ -42,7 +42,7 @@ Vec3 random_point(glint::Pcg32& rng, float extent) {
 }
 
 Vec3 random_direction(glint::Pcg32& rng) {
-  const Vec3 d = glint::sample_uniform_hemisphere({rng.next_float(), rng.next_float()});
+  const Vec3 d = glint::sample_uniform_hemisphere(glint::Vec2(rng.next_float(), rng.next_float()));
   return rng.next_float() < 0.5f ? d : -d;
 }
 

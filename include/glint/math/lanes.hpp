@@ -1,14 +1,8 @@
 #pragma once
-// Eight floats or ints in one AVX register: the arithmetic the wavefront renderer's stages do
-// for eight paths at once, lane i being path i of a block. GCC and Clang vector extensions give
-// the operators (+ - * / and comparisons, which yield -1 or 0 per lane); the few operations
-// they lack are written here: select, the minimum and maximum with std::min/max's rule for NaN,
-// sqrt and sin/cos. Defined only with GLINT_AVX2 (geometry/simd.hpp): without AVX a 32-byte
-// vector has no register, and passing one would change the calling convention. Everything
-// lane-wise (the warps' and policies' lane forms) sits under the same switch.
-//
-// Not IEEE-identical to the scalar code: sin and cos are polynomials (within 2 ulp of the
-// library's over the angles the warps use), and the compiler fuses multiply-adds in its own way.
+// The eight-lane width of math/wide.hpp as the wavefront renderer's stages use it, lane i being
+// path i of a block, with what AVX2 adds to the width-generic operations: lane masks as bits,
+// transposes, permutations and the packing of lanes into queues, 64-bit lanes for the samplers'
+// hashes. Defined only with GLINT_AVX2 (geometry/simd.hpp).
 
 #include <bit>
 #include <cmath>
@@ -17,16 +11,17 @@
 
 #include "glint/geometry/simd.hpp"
 #include "glint/math/vector.hpp"
+#include "glint/math/wide.hpp"
 
 #if defined(GLINT_AVX2)
 namespace glint {
 
 inline constexpr int kLaneCount = 8;
 
-using FloatLanes = float __attribute__((vector_size(32)));
+using FloatLanes = Float<kLaneCount>;
 /// Integers, and the masks comparisons give: -1 (all bits set) where true, 0 where false.
-using IntLanes = std::int32_t __attribute__((vector_size(32)));
-using UintLanes = std::uint32_t __attribute__((vector_size(32)));
+using IntLanes = Int<kLaneCount>;
+using UintLanes = UInt<kLaneCount>;
 
 inline FloatLanes broadcast(float value) {
   return FloatLanes{} + value;
@@ -59,19 +54,6 @@ inline std::uint32_t lane_bits(IntLanes mask) {
 /// The mask with lane i true where bit i of `bits` is set.
 inline IntLanes lanes_of_bits(std::uint32_t bits) {
   return std::bit_cast<IntLanes>(avx2::lane_vector(bits));
-}
-
-/// `if_true` where `mask` is true, `if_false` elsewhere.
-inline FloatLanes select(IntLanes mask, FloatLanes if_true, FloatLanes if_false) {
-  return std::bit_cast<FloatLanes>((std::bit_cast<IntLanes>(if_true) & mask) |
-                                   (std::bit_cast<IntLanes>(if_false) & ~mask));
-}
-inline IntLanes select(IntLanes mask, IntLanes if_true, IntLanes if_false) {
-  return (if_true & mask) | (if_false & ~mask);
-}
-inline UintLanes select(IntLanes mask, UintLanes if_true, UintLanes if_false) {
-  const auto m = std::bit_cast<UintLanes>(mask);
-  return (if_true & m) | (if_false & ~m);
 }
 
 /// The columns of eight rows of eight floats: column j holds rows[i][j] in lane i. Eight
@@ -143,80 +125,6 @@ inline IntLanes rotated_order(IntLanes packing, int at) {
 /// bits_to_unit_float lane by lane: the top 24 bits as a float in [0, 1), exactly.
 inline FloatLanes unit_floats(UintLanes bits) {
   return __builtin_convertvector(std::bit_cast<IntLanes>(bits >> 8), FloatLanes) * 0x1p-24f;
-}
-
-/// std::min and std::max lane by lane, with their rule for NaN: the first argument unless the
-/// comparison holds.
-inline FloatLanes min_lanes(FloatLanes a, FloatLanes b) {
-  return select(b < a, b, a);
-}
-inline FloatLanes max_lanes(FloatLanes a, FloatLanes b) {
-  return select(a < b, b, a);
-}
-
-inline FloatLanes abs_lanes(FloatLanes x) {
-  return std::bit_cast<FloatLanes>(std::bit_cast<IntLanes>(x) & 0x7fffffff);
-}
-/// std::copysign(magnitude, sign) lane by lane (-0 counts as negative).
-inline FloatLanes copysign_lanes(FloatLanes magnitude, FloatLanes sign) {
-  return std::bit_cast<FloatLanes>((std::bit_cast<IntLanes>(magnitude) & 0x7fffffff) |
-                                   (std::bit_cast<IntLanes>(sign) & std::int32_t(0x80000000u)));
-}
-
-inline FloatLanes sqrt_lanes(FloatLanes x) {
-  return _mm256_sqrt_ps(x);
-}
-
-/// sin(x) and cos(x) for 0 <= x <= 2^16 (the warps' angles are in [0, 2 pi]): the argument is
-/// reduced to [-pi/4, pi/4] around a multiple of pi/2 in three parts (Cody and Waite), then
-/// minimax polynomials of degree 7 and 8 (those of Cephes' sinf and cosf).
-inline void sincos_lanes(FloatLanes x, FloatLanes& sine, FloatLanes& cosine) {
-  const IntLanes octant = __builtin_convertvector(x * 1.27323954473516f, IntLanes);
-  const IntLanes even = (octant + 1) & ~1;  // the nearest multiple of pi/2, in units of pi/4
-  const FloatLanes k = __builtin_convertvector(even, FloatLanes);
-  const FloatLanes r =
-      ((x - k * 0.78515625f) - k * 2.4187564849853515625e-4f) - k * 3.77489497744594108e-8f;
-  const FloatLanes r2 = r * r;
-  const FloatLanes sin_r =
-      ((-1.9515295891e-4f * r2 + 8.3321608736e-3f) * r2 - 1.6666654611e-1f) * r2 * r + r;
-  const FloatLanes cos_r =
-      ((2.443315711809948e-5f * r2 - 1.388731625493765e-3f) * r2 + 4.166664568298827e-2f) * r2 *
-          r2 -
-      0.5f * r2 + 1.0f;
-  const IntLanes quadrant = even >> 1;
-  const IntLanes swap = (quadrant & 1) != 0;
-  const FloatLanes s = select(swap, cos_r, sin_r);
-  const FloatLanes c = select(swap, sin_r, cos_r);
-  // sin is negative in quadrants 2 and 3, cos in 1 and 2.
-  const IntLanes sin_sign = (quadrant & 2) << 30;
-  const IntLanes cos_sign = ((quadrant + 1) & 2) << 30;
-  sine = std::bit_cast<FloatLanes>(std::bit_cast<IntLanes>(s) ^ sin_sign);
-  cosine = std::bit_cast<FloatLanes>(std::bit_cast<IntLanes>(c) ^ cos_sign);
-}
-
-/// The natural logarithm of x for positive normal x: x = m 2^e with m in [sqrt(1/2), sqrt(2)),
-/// then Cephes logf's polynomial for log(m) and log(2) in two parts.
-inline FloatLanes log_lanes(FloatLanes x) {
-  const IntLanes bits = std::bit_cast<IntLanes>(x);
-  IntLanes exponent = ((bits >> 23) & 0xff) - 126;
-  FloatLanes m = std::bit_cast<FloatLanes>((bits & 0x007fffff) | 0x3f000000);  // [0.5, 1)
-  const IntLanes small = m < 0.707106781186547524f;
-  exponent += small;  // -1 where small
-  m = select(small, m + m, m) - 1.0f;
-  const FloatLanes e = __builtin_convertvector(exponent, FloatLanes);
-  const FloatLanes z = m * m;
-  FloatLanes y = 7.0376836292e-2f * m - 1.1514610310e-1f;
-  y = y * m + 1.1676998740e-1f;
-  y = y * m - 1.2420140846e-1f;
-  y = y * m + 1.4249322787e-1f;
-  y = y * m - 1.6668057665e-1f;
-  y = y * m + 2.0000714765e-1f;
-  y = y * m - 2.4999993993e-1f;
-  y = y * m + 3.3333331174e-1f;
-  y = y * m * z;
-  y += -2.12194440e-4f * e;
-  y += -0.5f * z;
-  return m + y + 0.693359375f * e;
 }
 
 /// Eight 64-bit integers: lanes 0-3 and 4-7 in two AVX registers (the multiplications are
@@ -294,59 +202,10 @@ inline Uint64Lanes select(IntLanes mask, const Uint64Lanes& if_true, const Uint6
           (if_true.high & high) | (if_false.high & ~high)};
 }
 
-struct Vec2Lanes {
-  FloatLanes x, y;
-};
-
+using Vec2Lanes = Vector2<FloatLanes>;
 /// Eight 3-vectors, one per lane, in structure-of-arrays form.
-struct Vec3Lanes {
-  FloatLanes x, y, z;
+using Vec3Lanes = Vector3<FloatLanes>;
 
-  static Vec3Lanes broadcast(const Vec3& v) {
-    return {glint::broadcast(v.x), glint::broadcast(v.y), glint::broadcast(v.z)};
-  }
-  Vec3 lane(int i) const { return {x[i], y[i], z[i]}; }
-  void set_lane(int i, const Vec3& v) {
-    x[i] = v.x;
-    y[i] = v.y;
-    z[i] = v.z;
-  }
-
-  friend Vec3Lanes operator+(const Vec3Lanes& a, const Vec3Lanes& b) {
-    return {a.x + b.x, a.y + b.y, a.z + b.z};
-  }
-  friend Vec3Lanes operator-(const Vec3Lanes& a, const Vec3Lanes& b) {
-    return {a.x - b.x, a.y - b.y, a.z - b.z};
-  }
-  friend Vec3Lanes operator-(const Vec3Lanes& a) { return {-a.x, -a.y, -a.z}; }
-  friend Vec3Lanes operator*(const Vec3Lanes& a, const Vec3Lanes& b) {
-    return {a.x * b.x, a.y * b.y, a.z * b.z};
-  }
-  friend Vec3Lanes operator*(float s, const Vec3Lanes& a) { return {s * a.x, s * a.y, s * a.z}; }
-  friend Vec3Lanes operator*(FloatLanes s, const Vec3Lanes& a) {
-    return {s * a.x, s * a.y, s * a.z};
-  }
-  friend Vec3Lanes operator*(const Vec3Lanes& a, FloatLanes s) {
-    return {a.x * s, a.y * s, a.z * s};
-  }
-  friend Vec3Lanes operator/(const Vec3Lanes& a, FloatLanes s) {
-    return {a.x / s, a.y / s, a.z / s};
-  }
-  Vec3Lanes& operator+=(const Vec3Lanes& b) { return *this = *this + b; }
-  Vec3Lanes& operator*=(const Vec3Lanes& b) { return *this = *this * b; }
-};
-
-inline FloatLanes dot(const Vec3Lanes& a, const Vec3Lanes& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-/// As glm::normalize: times the reciprocal of the length (one division, not three).
-inline Vec3Lanes normalize(const Vec3Lanes& v) {
-  return (1.0f / sqrt_lanes(dot(v, v))) * v;
-}
-inline Vec3Lanes select(IntLanes mask, const Vec3Lanes& if_true, const Vec3Lanes& if_false) {
-  return {select(mask, if_true.x, if_false.x), select(mask, if_true.y, if_false.y),
-          select(mask, if_true.z, if_false.z)};
-}
 /// glint::max_component lane by lane, with max_of's rule for NaN.
 inline FloatLanes max_component(const Vec3Lanes& v) {
   const auto max_of = [](FloatLanes a, FloatLanes b) { return select(a > b, a, b); };

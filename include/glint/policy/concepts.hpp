@@ -8,6 +8,7 @@
 
 #include "glint/math/lanes.hpp"
 #include "glint/math/vector.hpp"
+#include "glint/math/wide.hpp"
 #include "glint/scene/material.hpp"
 
 namespace glint {
@@ -44,19 +45,14 @@ concept Sampler = std::default_initializable<S> && std::copyable<S> &&
   { sampler.next_2d() } -> std::same_as<Vec2>;
 };
 
-/// A diffuse bounce direction in the local frame (z = normal) and its weight cos(theta)/pdf.
-struct DirectionSample {
-  Vec3 local_direction;
-  float weight;
+/// A diffuse bounce direction in the local frame (z = normal) and its weight cos(theta)/pdf,
+/// for one path (F = float) or for a Float's lanes of paths.
+template <typename F>
+struct BasicDirectionSample {
+  Vec3For<F> local_direction;
+  F weight;
 };
-
-/// Eight DirectionSamples, for the wavefront renderer's lane-wise shading.
-#if defined(GLINT_AVX2)
-struct DirectionSampleLanes {
-  Vec3Lanes local_direction;
-  FloatLanes weight;
-};
-#endif
+using DirectionSample = BasicDirectionSample<float>;
 
 /// How the diffuse bounce direction is drawn.
 template <typename D>

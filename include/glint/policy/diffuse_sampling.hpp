@@ -1,6 +1,6 @@
 #pragma once
 // Diffuse bounce direction policies. Both give unbiased estimates of the same integral; they
-// differ only in variance.
+// differ only in variance. Each is written once for every width (math/wide.hpp).
 
 #include "glint/math/sampling.hpp"
 #include "glint/policy/concepts.hpp"
@@ -9,34 +9,27 @@ namespace glint {
 
 /// The report's choice: uniform over the hemisphere, weight cos(theta) / (1/2pi).
 struct UniformHemisphere {
-  static DirectionSample sample(Vec2 u) {
-    const Vec3 d = sample_uniform_hemisphere(u);
+  template <typename V2>
+  static BasicDirectionSample<FloatOf<V2>> sample(const V2& u) {
+    const Vec3For<FloatOf<V2>> d = sample_uniform_hemisphere(u);
     return {d, d.z / kUniformHemispherePdf};
   }
-  static float pdf(float /*cos_theta*/) { return kUniformHemispherePdf; }
-#if defined(GLINT_AVX2)
-  static DirectionSampleLanes sample(Vec2Lanes u) {
-    const Vec3Lanes d = sample_uniform_hemisphere_lanes(u);
-    return {d, d.z / kUniformHemispherePdf};
+  template <FloatType F>
+  static F pdf(F /*cos_theta*/) {
+    return splat<F>(kUniformHemispherePdf);
   }
-  static FloatLanes pdf(FloatLanes /*cos_theta*/) {
-    return broadcast(kUniformHemispherePdf);
-  }
-#endif
 };
 
 /// Cosine-weighted: the weight cos/pdf is exactly pi, so a bounce adds no variance of its own.
 struct CosineHemisphere {
-  static DirectionSample sample(Vec2 u) { return {sample_cosine_hemisphere(u), kPi}; }
-  static float pdf(float cos_theta) { return cos_theta > 0.0f ? cos_theta * kInvPi : 0.0f; }
-#if defined(GLINT_AVX2)
-  static DirectionSampleLanes sample(Vec2Lanes u) {
-    return {sample_cosine_hemisphere_lanes(u), broadcast(kPi)};
+  template <typename V2>
+  static BasicDirectionSample<FloatOf<V2>> sample(const V2& u) {
+    return {sample_cosine_hemisphere(u), splat<FloatOf<V2>>(kPi)};
   }
-  static FloatLanes pdf(FloatLanes cos_theta) {
-    return select(cos_theta > 0.0f, cos_theta * kInvPi, broadcast(0.0f));
+  template <FloatType F>
+  static F pdf(F cos_theta) {
+    return select(cos_theta > 0.0f, cos_theta * kInvPi, splat<F>(0.0f));
   }
-#endif
 };
 
 static_assert(DiffuseSampling<UniformHemisphere> && DiffuseSampling<CosineHemisphere>);

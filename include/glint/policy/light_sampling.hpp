@@ -9,9 +9,9 @@
 // of the strategy that made the sample, and that of the other strategy for the same direction.
 // For every direction the two weights sum to one, which keeps the estimate unbiased.
 
-#include <cmath>
 #include <limits>
 
+#include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 
 namespace glint {
@@ -19,14 +19,26 @@ namespace glint {
 /// The report's: emissive spheres are found only when a bounce happens to hit them.
 struct PointLightsOnly {
   static constexpr bool samples_emitters = false;
-  static float light_weight(float, float) { return 0.0f; }
-  static float bounce_weight(float, float) { return 1.0f; }
-#if defined(GLINT_AVX2)
-  static FloatLanes light_weight(FloatLanes, FloatLanes) {
-    return broadcast(0.0f);
+  template <FloatType F>
+  static F light_weight(F, F) {
+    return splat<F>(0.0f);
   }
-#endif
+  template <FloatType F>
+  static F bounce_weight(F, F) {
+    return splat<F>(1.0f);
+  }
 };
+
+namespace detail {
+/// A heuristic's weight `w` for a sample of density `pdf`: none for a density that is not
+/// positive (or NaN), all for an infinite one.
+template <FloatType F>
+inline F heuristic_weight(F pdf, F w) {
+  return select(pdf > 0.0f,
+                select(pdf == std::numeric_limits<float>::infinity(), splat<F>(1.0f), w),
+                splat<F>(0.0f));
+}
+}  // namespace detail
 
 /// Both heuristics are written in the ratio of the densities, 1 / (1 + (other/pdf)^k): the
 /// densities may lie near the ends of the float range (the cone of a small distant lamp, the
@@ -35,40 +47,21 @@ struct PointLightsOnly {
 
 /// The balance heuristic: each strategy weighted by its share of the summed densities.
 struct BalanceHeuristic {
-  static float weight(float pdf, float other_pdf) {
-    if (!(pdf > 0.0f)) return 0.0f;
-    if (std::isinf(pdf)) return 1.0f;
-    return 1.0f / (1.0f + other_pdf / pdf);
+  template <FloatType F>
+  static F weight(F pdf, F other_pdf) {
+    return detail::heuristic_weight(pdf, 1.0f / (1.0f + other_pdf / pdf));
   }
-#if defined(GLINT_AVX2)
-  static FloatLanes weight(FloatLanes pdf, FloatLanes other_pdf) {
-    const FloatLanes w = 1.0f / (1.0f + other_pdf / pdf);
-    return select(pdf > 0.0f,
-                  select(pdf == std::numeric_limits<float>::infinity(), broadcast(1.0f), w),
-                  broadcast(0.0f));
-  }
-#endif
 };
 
 /// The power heuristic with exponent 2: closer to choosing the better strategy outright, which
 /// Veach shows is rarely worse than the balance heuristic and often much better where one
 /// strategy is poor (a small lamp seen from a diffuse surface).
 struct PowerHeuristic {
-  static float weight(float pdf, float other_pdf) {
-    if (!(pdf > 0.0f)) return 0.0f;
-    if (std::isinf(pdf)) return 1.0f;
-    const float ratio = other_pdf / pdf;
-    return 1.0f / (1.0f + ratio * ratio);
+  template <FloatType F>
+  static F weight(F pdf, F other_pdf) {
+    const F ratio = other_pdf / pdf;
+    return detail::heuristic_weight(pdf, 1.0f / (1.0f + ratio * ratio));
   }
-#if defined(GLINT_AVX2)
-  static FloatLanes weight(FloatLanes pdf, FloatLanes other_pdf) {
-    const FloatLanes ratio = other_pdf / pdf;
-    const FloatLanes w = 1.0f / (1.0f + ratio * ratio);
-    return select(pdf > 0.0f,
-                  select(pdf == std::numeric_limits<float>::infinity(), broadcast(1.0f), w),
-                  broadcast(0.0f));
-  }
-#endif
 };
 
 /// Next-event estimation with multiple importance sampling: at every diffuse hit from which a
@@ -80,19 +73,17 @@ template <MisHeuristic Heuristic>
 struct EmitterSampling {
   using heuristic = Heuristic;
   static constexpr bool samples_emitters = true;
-  static float light_weight(float light_pdf, float bounce_pdf) {
-    return Heuristic::weight(light_pdf, bounce_pdf);
-  }
-  static float bounce_weight(float bounce_pdf, float light_pdf) {
-    return Heuristic::weight(bounce_pdf, light_pdf);
-  }
-#if defined(GLINT_AVX2)
-  /// For heuristics with a lane-wise weight.
-  static FloatLanes light_weight(FloatLanes light_pdf, FloatLanes bounce_pdf) requires requires {
+  /// Where the heuristic has the width's form (a user's may be written for one path only).
+  template <FloatType F>
+  static F light_weight(F light_pdf, F bounce_pdf) requires requires {
     Heuristic::weight(light_pdf, bounce_pdf);
   }
   { return Heuristic::weight(light_pdf, bounce_pdf); }
-#endif
+  template <FloatType F>
+  static F bounce_weight(F bounce_pdf, F light_pdf) requires requires {
+    Heuristic::weight(bounce_pdf, light_pdf);
+  }
+  { return Heuristic::weight(bounce_pdf, light_pdf); }
 };
 
 /// Next-event estimation alone: emitters are reached only by light samples, and a bounce that
@@ -100,13 +91,14 @@ struct EmitterSampling {
 /// or close; kept as the reference strategy the tests compare the others with.
 struct EmitterSamplingOnly {
   static constexpr bool samples_emitters = true;
-  static float light_weight(float, float) { return 1.0f; }
-  static float bounce_weight(float, float) { return 0.0f; }
-#if defined(GLINT_AVX2)
-  static FloatLanes light_weight(FloatLanes, FloatLanes) {
-    return broadcast(1.0f);
+  template <FloatType F>
+  static F light_weight(F, F) {
+    return splat<F>(1.0f);
   }
-#endif
+  template <FloatType F>
+  static F bounce_weight(F, F) {
+    return splat<F>(0.0f);
+  }
 };
 
 static_assert(MisHeuristic<BalanceHeuristic> && MisHeuristic<PowerHeuristic>);

@@ -1,8 +1,8 @@
 #pragma once
-// Path termination policies: when a path stops.
+// Path termination policies: when a path stops. Each is written once for every width
+// (math/wide.hpp).
 
-#include <cmath>
-
+#include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 
 namespace glint {
@@ -10,12 +10,10 @@ namespace glint {
 /// The report's: every path runs to the maximum depth (or until it escapes).
 struct FixedDepth {
   static constexpr bool uses_roulette = false;
-  static float continue_probability(int, float) { return 1.0f; }
-#if defined(GLINT_AVX2)
-  static FloatLanes continue_probability(IntLanes, FloatLanes) {
-    return broadcast(1.0f);
+  template <FloatType F>
+  static F continue_probability(IntFor<F>, F) {
+    return splat<F>(1.0f);
   }
-#endif
 };
 
 /// Russian roulette after three bounces, as pbrt-v4 plays it: a path whose throughput (the
@@ -27,17 +25,12 @@ struct FixedDepth {
 struct RussianRoulette {
   static constexpr bool uses_roulette = true;
   static constexpr int kMinimumBounces = 3;
-  static float continue_probability(int depth, float throughput) {
-    if (depth < kMinimumBounces) return 1.0f;
-    return std::fmin(throughput, 1.0f);
-  }
   /// std::fmin's rule for NaN: a NaN throughput continues with probability 1.
-#if defined(GLINT_AVX2)
-  static FloatLanes continue_probability(IntLanes depth, FloatLanes throughput) {
-    const FloatLanes p = select(throughput < 1.0f, throughput, broadcast(1.0f));
-    return select(depth < kMinimumBounces, broadcast(1.0f), p);
+  template <FloatType F>
+  static F continue_probability(IntFor<F> depth, F throughput) {
+    const F p = select(throughput < 1.0f, throughput, splat<F>(1.0f));
+    return select(depth < kMinimumBounces, splat<F>(1.0f), p);
   }
-#endif
 };
 
 static_assert(PathTermination<FixedDepth> && PathTermination<RussianRoulette>);

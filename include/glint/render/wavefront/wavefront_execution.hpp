@@ -76,7 +76,7 @@ concept WavefrontConfig =
 template <typename C>
 concept LanewisePolicies = requires(Vec2Lanes u, FloatLanes value, IntLanes depth, float sigma) {
   { C::antialiasing::offset(u, sigma) } -> std::same_as<Vec2Lanes>;
-  { C::diffuse_sampling::sample(u) } -> std::same_as<DirectionSampleLanes>;
+  { C::diffuse_sampling::sample(u) } -> std::same_as<BasicDirectionSample<FloatLanes>>;
   { C::diffuse_sampling::pdf(value) } -> std::same_as<FloatLanes>;
   { C::fresnel::reflectance(value, value, value) } -> std::same_as<FloatLanes>;
   { C::light_sampling::light_weight(value, value) } -> std::same_as<FloatLanes>;
@@ -688,7 +688,7 @@ class WavefrontExecution {
     const FloatLanes cos_out = dot(direction, normal);
     const IntLanes from_inside = cos_out > 0.0f;
     const Vec3Lanes facing = select(from_inside, -normal, normal);
-    const FloatLanes cos_incident = abs_lanes(cos_out);
+    const FloatLanes cos_incident = abs(cos_out);
 
     // Emission, weighted against light sampling where an emitter was reached by a bounce.
     FloatLanes emission_weight = broadcast(1.0f);
@@ -730,7 +730,7 @@ class WavefrontExecution {
       for (const PointLight& light : scene_.lights()) {
         const Vec3Lanes to_light = Vec3Lanes::broadcast(light.position) - point;
         const FloatLanes distance2 = dot(to_light, to_light);
-        const FloatLanes distance = sqrt_lanes(distance2);
+        const FloatLanes distance = sqrt(distance2);
         const Vec3Lanes toward = to_light / distance;
         const FloatLanes cosine = dot(toward, facing);
         const LaneMask lit = diffuse_lanes & lane_bits(cosine > 0.0f);
@@ -780,8 +780,7 @@ class WavefrontExecution {
       const FloatLanes eta = eta_incident / eta_transmitted;
       const FloatLanes sin2_transmitted = eta * eta * (1.0f - cos_incident * cos_incident);
       const IntLanes total_internal = sin2_transmitted >= 1.0f;
-      const FloatLanes cos_transmitted =
-          sqrt_lanes(max_lanes(broadcast(0.0f), 1.0f - sin2_transmitted));
+      const FloatLanes cos_transmitted = sqrt(max(broadcast(0.0f), 1.0f - sin2_transmitted));
       refracted = normalize(eta * direction + (eta * cos_incident - cos_transmitted) * facing);
       reflect = total_internal;
       if constexpr (C::fresnel::enabled) {
@@ -796,9 +795,9 @@ class WavefrontExecution {
     }
 
     // Diffuse: a direction from C::diffuse_sampling in the frame of the facing normal.
-    const DirectionSampleLanes diffuse_sample = C::diffuse_sampling::sample(u_diffuse);
+    const BasicDirectionSample<FloatLanes> diffuse_sample = C::diffuse_sampling::sample(u_diffuse);
     const Vec3Lanes diffuse_direction =
-        FrameLanes::around(facing).to_world(diffuse_sample.local_direction);
+        BasicFrame<Vec3Lanes>::around(facing).to_world(diffuse_sample.local_direction);
 
     const Vec3Lanes next_direction = select(choose_diffuse, diffuse_direction,
                                             select(choose_mirror | reflect, reflected, refracted));
@@ -902,27 +901,25 @@ class WavefrontExecution {
     const IntLanes none = on & ~from_inside;
 
     // Outside: uniform in the cone the sphere subtends (SphereEmitter::cone_one_minus_cos_max).
-    const FloatLanes distance = sqrt_lanes(distance2);
-    const FloatLanes sin2_max =
-        min_lanes(broadcast(1.0f), (radius / distance) * (radius / distance));
+    const FloatLanes distance = sqrt(distance2);
+    const FloatLanes sin2_max = min(broadcast(1.0f), (radius / distance) * (radius / distance));
     const FloatLanes cos2_max =
-        max_lanes(broadcast(0.0f), (distance - radius) * (distance + radius)) /
-        (distance * distance);
-    const FloatLanes one_minus_cos_max = sin2_max / (1.0f + sqrt_lanes(cos2_max));
-    const Vec3Lanes cone_direction = FrameLanes::around(to_center / distance)
-                                         .to_world(sample_uniform_cone_lanes(u, one_minus_cos_max));
-    const FloatLanes cone_pdf = uniform_cone_pdf_lanes(one_minus_cos_max);
+        max(broadcast(0.0f), (distance - radius) * (distance + radius)) / (distance * distance);
+    const FloatLanes one_minus_cos_max = sin2_max / (1.0f + sqrt(cos2_max));
+    const Vec3Lanes cone_direction = BasicFrame<Vec3Lanes>::around(to_center / distance)
+                                         .to_world(sample_uniform_cone(u, one_minus_cos_max));
+    const FloatLanes cone_pdf = uniform_cone_pdf(one_minus_cos_max);
 
     // Inside: through a uniform point of the sphere's area (only where some lane needs it).
     Vec3Lanes toward = cone_direction;
     FloatLanes pdf = cone_pdf;
     IntLanes area_valid = broadcast(0);
     if ((lanes & ~lane_bits(outside)) != 0) {
-      const Vec3Lanes area_normal = sample_uniform_sphere_lanes(u);
+      const Vec3Lanes area_normal = sample_uniform_sphere(u);
       const Vec3Lanes to_light = center + radius * area_normal - point;
       const FloatLanes light_distance2 = dot(to_light, to_light);
-      const Vec3Lanes area_direction = to_light / sqrt_lanes(light_distance2);
-      const FloatLanes area_cosine = abs_lanes(dot(area_direction, area_normal));
+      const Vec3Lanes area_direction = to_light / sqrt(light_distance2);
+      const FloatLanes area_cosine = abs(dot(area_direction, area_normal));
       const FloatLanes area_pdf = light_distance2 / ((4.0f * kPi * radius * radius) * area_cosine);
       area_valid = (light_distance2 > 0.0f) & (area_cosine > 0.0f);
       toward = select(outside, cone_direction, area_direction);

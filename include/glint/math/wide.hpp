@@ -1,0 +1,329 @@
+#pragma once
+// The numbers glint's physics is written in, at any width: Float<W>, Int<W>, UInt<W> and
+// Mask<W> hold W lanes, one path per lane. At width 1 they are plain float, int32_t, uint32_t
+// and bool, so a formula instantiated at width 1 is ordinary scalar code; at widths 8 (one AVX2
+// register) and 16 (one AVX-512 register) they are GCC/Clang vector types, whose operators act
+// lane by lane and whose comparisons give masks of -1 (true) or 0 per lane. A formula is
+// written once, as a template over its Float type, with the operators and the functions below
+// (select, min, max, abs, sqrt, copysign, conversions): the same IEEE operations in the same
+// order in every lane, so that with -ffp-contract=off (glint's CMake target sets it) every
+// width gives the same bits.
+//
+// Vec2For<F> and Vec3For<F> are the 2- and 3-vectors over F: glm's vec2 and vec3 at width 1,
+// Vector2<F> and Vector3<F> (structures of arrays) wider. Templates take vectors as their own
+// parameter type and find the Float type with FloatOf, so that callers never name a width.
+//
+// Vector types are defined whatever the compiler targets: without AVX the compiler carries out
+// a 32- or 64-byte vector's operations in narrower registers, slower but with the same results.
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+#include "glint/math/vector.hpp"
+
+#if defined(__AVX__) || defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+
+namespace glint {
+
+namespace detail {
+template <int W>
+struct LaneTypes;
+template <>
+struct LaneTypes<1> {
+  using Float = float;
+  using Int = std::int32_t;
+  using UInt = std::uint32_t;
+  using Mask = bool;
+};
+// Spelt out per width: GCC drops a vector_size whose size depends on a template parameter.
+template <>
+struct LaneTypes<8> {
+  using Float = float __attribute__((vector_size(32)));
+  using Int = std::int32_t __attribute__((vector_size(32)));
+  using UInt = std::uint32_t __attribute__((vector_size(32)));
+  using Mask = Int;  // what comparisons of Float or Int give: -1 or 0 per lane
+};
+template <>
+struct LaneTypes<16> {
+  using Float = float __attribute__((vector_size(64)));
+  using Int = std::int32_t __attribute__((vector_size(64)));
+  using UInt = std::uint32_t __attribute__((vector_size(64)));
+  using Mask = Int;
+};
+}  // namespace detail
+
+/// The widths glint's physics is instantiated at.
+inline constexpr int kWidths[] = {1, 8, 16};
+
+template <int W>
+using Float = typename detail::LaneTypes<W>::Float;
+template <int W>
+using Int = typename detail::LaneTypes<W>::Int;
+template <int W>
+using UInt = typename detail::LaneTypes<W>::UInt;
+template <int W>
+using Mask = typename detail::LaneTypes<W>::Mask;
+
+/// The number of lanes of a Float, Int, UInt or Mask type.
+template <typename T>
+inline constexpr int kLanesOf = std::is_scalar_v<T> ? 1 : int(sizeof(T) / 4);
+
+/// The Int, UInt and Mask types of Float type F's width.
+template <typename F>
+using IntFor = Int<kLanesOf<F>>;
+template <typename F>
+using UIntFor = UInt<kLanesOf<F>>;
+template <typename F>
+using MaskFor = Mask<kLanesOf<F>>;
+
+/// Whether T is one of the Float types.
+template <typename T>
+concept FloatType =
+    std::is_same_v<T, Float<1>> || std::is_same_v<T, Float<8>> || std::is_same_v<T, Float<16>>;
+/// Whether T is a Float, Int or UInt type of more than one lane (a Mask is an Int there).
+template <typename T>
+concept WideNumber =
+    std::is_same_v<T, Float<8>> || std::is_same_v<T, Int<8>> || std::is_same_v<T, UInt<8>> ||
+    std::is_same_v<T, Float<16>> || std::is_same_v<T, Int<16>> || std::is_same_v<T, UInt<16>>;
+
+// ---- lanes: broadcast, access, loads and stores ------------------------------------------
+
+/// `value` in every lane.
+template <typename T, typename S>
+inline T splat(S value) {
+  if constexpr (kLanesOf<T> == 1)
+    return T(value);
+  else
+    return T{} + value;
+}
+
+/// Lane i of a value (width 1: the value).
+template <typename T>
+inline auto lane(const T& value, int i) {
+  if constexpr (kLanesOf<T> == 1) {
+    (void)i;
+    return value;
+  } else {
+    return value[i];
+  }
+}
+template <typename T, typename S>
+inline void set_lane(T& value, int i, S to) {
+  if constexpr (kLanesOf<T> == 1) {
+    (void)i;
+    value = T(to);
+  } else {
+    value[i] = to;
+  }
+}
+
+/// kLanesOf<T> consecutive values from `from`, and back.
+template <typename T, typename S>
+inline T load(const S* from) {
+  static_assert(sizeof(S) * kLanesOf<T> == sizeof(T));
+  T value;
+  std::memcpy(&value, from, sizeof value);
+  return value;
+}
+template <typename T, typename S>
+inline void store(S* to, const T& value) {
+  static_assert(sizeof(S) * kLanesOf<T> == sizeof(T));
+  std::memcpy(to, &value, sizeof value);
+}
+
+// ---- masks ---------------------------------------------------------------------------------
+
+/// Whether any, or every, lane of a mask is true.
+inline bool any(bool mask) {
+  return mask;
+}
+inline bool all(bool mask) {
+  return mask;
+}
+template <WideNumber M>
+inline bool any(M mask) {
+  M folded = mask;
+  for (int i = 1; i < kLanesOf<M>; ++i)
+    folded[0] |= mask[i];
+  return folded[0] != 0;
+}
+template <WideNumber M>
+inline bool all(M mask) {
+  M folded = mask;
+  for (int i = 1; i < kLanesOf<M>; ++i)
+    folded[0] &= mask[i];
+  return folded[0] != 0;
+}
+
+/// `if_true` in the lanes where `mask` is true, `if_false` in the others.
+template <typename T>
+inline T select(bool mask, T if_true, T if_false) {
+  return mask ? if_true : if_false;
+}
+template <WideNumber M, WideNumber T>
+requires(kLanesOf<M> == kLanesOf<T>) inline T select(M mask, T if_true, T if_false) {
+  if constexpr (std::is_same_v<T, M>) {
+    return (if_true & mask) | (if_false & ~mask);
+  } else {
+    using Bits = decltype(mask);
+    return std::bit_cast<T>((std::bit_cast<Bits>(if_true) & mask) |
+                            (std::bit_cast<Bits>(if_false) & ~mask));
+  }
+}
+
+// ---- arithmetic ------------------------------------------------------------------------------
+
+/// std::min and std::max lane by lane, with their rule for NaN: the first argument unless the
+/// comparison holds.
+template <FloatType F>
+inline F min(F a, F b) {
+  return select(b < a, b, a);
+}
+template <FloatType F>
+inline F max(F a, F b) {
+  return select(a < b, b, a);
+}
+
+template <FloatType F>
+inline F abs(F x) {
+  if constexpr (kLanesOf<F> == 1)
+    return std::fabs(x);
+  else
+    return std::bit_cast<F>(std::bit_cast<IntFor<F>>(x) & 0x7fffffff);
+}
+
+/// std::copysign lane by lane (-0 counts as negative).
+template <FloatType F>
+inline F copysign(F magnitude, F sign) {
+  if constexpr (kLanesOf<F> == 1) {
+    return std::copysign(magnitude, sign);
+  } else {
+    using I = IntFor<F>;
+    return std::bit_cast<F>((std::bit_cast<I>(magnitude) & 0x7fffffff) |
+                            (std::bit_cast<I>(sign) & std::int32_t(0x80000000u)));
+  }
+}
+
+/// The correctly rounded square root (IEEE), so the same in every lane and at every width.
+template <FloatType F>
+inline F sqrt(F x) {
+  if constexpr (kLanesOf<F> == 1) {
+    return std::sqrt(x);
+#if defined(__AVX512F__)
+  } else if constexpr (kLanesOf<F> == 16) {
+    // The masked form: the plain one starts from an undefined register, which GCC 12 reports
+    // as used uninitialised.
+    const __m512 v = std::bit_cast<__m512>(x);
+    return std::bit_cast<F>(_mm512_mask_sqrt_ps(v, __mmask16(0xffff), v));
+#endif
+#if defined(__AVX__)
+  } else if constexpr (kLanesOf<F> == 8) {
+    return std::bit_cast<F>(_mm256_sqrt_ps(std::bit_cast<__m256>(x)));
+#endif
+  } else {
+    F result;
+    for (int i = 0; i < kLanesOf<F>; ++i)
+      result[i] = __builtin_sqrtf(x[i]);
+    return result;
+  }
+}
+
+/// Conversions lane by lane: Int to Float (exact below 2^24) and Float to Int truncated towards
+/// zero (for values inside the Int range).
+template <typename I>
+inline auto to_float(I value) {
+  if constexpr (kLanesOf<I> == 1)
+    return float(value);
+  else
+    return __builtin_convertvector(value, Float<kLanesOf<I>>);
+}
+template <FloatType F>
+inline IntFor<F> truncate_to_int(F value) {
+  if constexpr (kLanesOf<F> == 1)
+    return std::int32_t(value);
+  else
+    return __builtin_convertvector(value, IntFor<F>);
+}
+
+/// The bits of a Float as an Int, and back.
+template <FloatType F>
+inline IntFor<F> bits_of(F value) {
+  return std::bit_cast<IntFor<F>>(value);
+}
+template <typename I>
+inline Float<kLanesOf<I>> float_of_bits(I bits) {
+  return std::bit_cast<Float<kLanesOf<I>>>(bits);
+}
+
+// ---- vectors ---------------------------------------------------------------------------------
+
+/// Two and three lanes-wide numbers: lane i of x, y (and z) is the vector of path i.
+template <typename F>
+struct Vector2 {
+  F x, y;
+};
+
+template <typename F>
+struct Vector3 {
+  F x, y, z;
+
+  static Vector3 broadcast(const Vec3& v) { return {splat<F>(v.x), splat<F>(v.y), splat<F>(v.z)}; }
+  Vec3 lane(int i) const { return {x[i], y[i], z[i]}; }
+  void set_lane(int i, const Vec3& v) {
+    x[i] = v.x;
+    y[i] = v.y;
+    z[i] = v.z;
+  }
+
+  friend Vector3 operator+(const Vector3& a, const Vector3& b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+  }
+  friend Vector3 operator-(const Vector3& a, const Vector3& b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+  }
+  friend Vector3 operator-(const Vector3& a) { return {-a.x, -a.y, -a.z}; }
+  friend Vector3 operator*(const Vector3& a, const Vector3& b) {
+    return {a.x * b.x, a.y * b.y, a.z * b.z};
+  }
+  friend Vector3 operator*(float s, const Vector3& a) { return {s * a.x, s * a.y, s * a.z}; }
+  friend Vector3 operator*(F s, const Vector3& a) { return {s * a.x, s * a.y, s * a.z}; }
+  friend Vector3 operator*(const Vector3& a, F s) { return {a.x * s, a.y * s, a.z * s}; }
+  friend Vector3 operator/(const Vector3& a, F s) { return {a.x / s, a.y / s, a.z / s}; }
+  Vector3& operator+=(const Vector3& b) { return *this = *this + b; }
+  Vector3& operator*=(const Vector3& b) { return *this = *this * b; }
+};
+
+template <typename F>
+using Vec2For = std::conditional_t<kLanesOf<F> == 1, Vec2, Vector2<F>>;
+template <typename F>
+using Vec3For = std::conditional_t<kLanesOf<F> == 1, Vec3, Vector3<F>>;
+
+/// The Float type of a vector type (Vec2, Vec3, Vector2<F>, Vector3<F>).
+template <typename V>
+using FloatOf = std::remove_cvref_t<decltype(std::declval<V>().x)>;
+
+/// glm::dot's order of operations: (x + y) + z.
+template <typename F>
+inline F dot(const Vector3<F>& a, const Vector3<F>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+/// As glm::normalize: times the reciprocal of the length (one division, not three).
+template <typename F>
+inline Vector3<F> normalize(const Vector3<F>& v) {
+  return (1.0f / sqrt(dot(v, v))) * v;
+}
+template <typename M, typename F>
+inline Vector3<F> select(M mask, const Vector3<F>& if_true, const Vector3<F>& if_false) {
+  return {select(mask, if_true.x, if_false.x), select(mask, if_true.y, if_false.y),
+          select(mask, if_true.z, if_false.z)};
+}
+inline Vec3 select(bool mask, const Vec3& if_true, const Vec3& if_false) {
+  return mask ? if_true : if_false;
+}
+
+}  // namespace glint
