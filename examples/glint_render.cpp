@@ -36,7 +36,8 @@ the process and then its process group).
 Outputs are checked before rendering and written to new temporary files beside them, renamed
 into place only when all were written.
 Exit status: 0 on success (--time-limit included), 1 for a bad scene, an unwritable output,
-a checkpoint that cannot be resumed or a CPU without an instruction set this build uses,
+a checkpoint that cannot be resumed or written at the end (the images are written first)
+or a CPU without an instruction set this build uses,
 2 for bad options,
 3 for a valid scene that this variant cannot render (a shading kind it was built without),
 128 + the signal's number when a signal stopped the render (130 for SIGINT).

@@ -85,7 +85,7 @@ into place only when all were written, after every rank has ended its work: a ra
 makes mpirun end the run, and no image is written.
 Exit status (rank 0's, which mpirun returns unless it was signalled itself): 0 on success
 (--time-limit included), 1 for a bad scene, an unwritable output, a checkpoint that cannot be
-resumed, a CPU without an instruction set this build uses or a rank that failed, 2 for bad
+resumed or written at the end (the images are written first), a CPU without an instruction set this build uses or a rank that failed, 2 for bad
 options, 3 for a valid scene that this variant cannot render (a shading kind it was built
 without), 128 + the signal's number when a signal stopped the render (138 for SIGUSR1).
 )",

@@ -155,8 +155,9 @@ class PassKeeper {
   glint::PassCallback callback();
 
   bool time_is_up() const { return time_is_up_; }
-  /// The checkpoint's bytes after the last completed pass.
-  std::vector<char> final_checkpoint() const;
+  /// Writes the checkpoint of the last completed pass to --checkpoint's file, piece by piece.
+  /// Throws ImageWriteError naming the file.
+  void write_final_checkpoint() const;
 
  private:
   const Program& program_;
@@ -179,9 +180,10 @@ struct RunReport {
   std::string after_summary;
 };
 
-/// Writes the run's files (the images and the checkpoint, together or none) and says how it
-/// ended: the summary line, warnings, what a stop left. Returns the exit status. Throws
-/// ImageWriteError when a file cannot be written.
+/// Writes the run's images (together or none), then its checkpoint, and says how it ended: the
+/// summary line, warnings, what a stop left. Returns the exit status: 1 when the checkpoint
+/// could not be written (the images were). Throws ImageWriteError when an image cannot be
+/// written (and then writes no checkpoint).
 int finish_run(const Program& program, const Options& options, const std::string& output,
                const glint::RenderSettings& settings, const glint::RenderResult& result,
                const PassKeeper& keeper, const RunReport& report);

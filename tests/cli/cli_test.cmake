@@ -211,14 +211,15 @@ if(GLINT_BASH)
   foreach(case sigint sigterm sighup group_signal timeout second_signal sigint_quiet planted_symlinks
           hdr_fails_while_writing hdr_is_directory output_is_directory read_only_directory
           scene_is_output threads_fail checkpoint_resume checkpoint_after_kill resume_refused
-          time_limit_zero huge_values)
+          time_limit_zero huge_values checkpoint_fails_complete checkpoint_fails_time_limit
+          checkpoint_fails_sigint checkpoint_directory_vanishes)
     string(REPLACE "_" "-" name ${case})
     add_test(NAME "cli: ${name}"
              COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash ${case}
                      $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
                      ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli SKIP_RETURN_CODE 77)
-    if(case MATCHES "^(checkpoint_|group_signal)")
+    if(case MATCHES "^(checkpoint_resume|checkpoint_after_kill|group_signal)$")
       set_tests_properties("cli: ${name}" PROPERTIES LABELS "cli;long")
     endif()
     if(GLINT_SANITIZE)

@@ -219,6 +219,59 @@ case_hdr_fails_while_writing() {
   no_temporaries
 }
 
+# A checkpoint that cannot be written at the end (the disk full: here a file size limit that
+# the images fit under, the checkpoint of 24 bytes a pixel not; or its directory removed
+# during the render): the images are written whole all the same, and the status is 1 with the
+# checkpoint named last. For a complete render, one stopped by --time-limit and one by SIGINT.
+checkpoint_limit=$((long_width * long_height * 18 / 1024)) # blocks: above the PFM, below it
+with_exr=()
+"$program" --exr x.exr 2>&1 | grep -q "without OpenEXR" || with_exr=(--exr out.exr)
+images_whole_without_checkpoint() { # STATUS_FOUND CHECKPOINT PROBLEM
+  (($1 == 1)) || fail "exit status $1, expected 1"
+  local message
+  message=$(tail -n 1 err.log)
+  [[ $message == "glint-render: error: no checkpoint: cannot write $2: $3 (the images were written)" ]] ||
+    fail "last line on stderr is not the checkpoint's failure: '$message'"
+  ! grep -q "holds the render so far" err.log || fail "the missing checkpoint is offered for --resume"
+  complete_png out.png
+  complete_pfm out.pfm "$long_width" "$long_height"
+  if ((${#with_exr[@]})); then
+    [[ $(head -c 4 out.exr | od -An -tx1 | tr -d ' \n') == 762f3101 ]] || fail "out.exr is no EXR"
+  fi
+  [[ ! -e $2 ]] || fail "$2 exists"
+  no_temporaries
+}
+case_checkpoint_fails_complete() {
+  (ulimit -f "$checkpoint_limit" &&
+    "$program" "$scene" "${long_render[@]}" "${with_exr[@]}" --spp 4 --checkpoint ck.glint 2>err.log)
+  images_whole_without_checkpoint $? ck.glint "File too large"
+  grep -q "^glint-render (.*): .* -> out\.png: ${long_width}x${long_height}, 4 spp," err.log ||
+    fail "no summary line"
+}
+case_checkpoint_fails_time_limit() {
+  (ulimit -f "$checkpoint_limit" &&
+    "$program" "$scene" "${long_render[@]}" "${with_exr[@]}" --time-limit 0 --checkpoint ck.glint 2>err.log)
+  images_whole_without_checkpoint $? ck.glint "File too large"
+  grep -q "^glint-render: time limit of 0 s reached: out\.png holds 1 of 1024 samples" err.log ||
+    fail "no time limit message"
+}
+case_checkpoint_fails_sigint() {
+  launcher=(bash -c 'ulimit -f "$0" && exec "$@"' "$checkpoint_limit")
+  start_long_render "${with_exr[@]}" --checkpoint ck.glint
+  kill -s INT "$pid"
+  wait "$pid"
+  images_whole_without_checkpoint $? ck.glint "File too large"
+  grep -q "^glint-render: stopped by SIGINT: out\.png holds" err.log || fail "no stop message"
+}
+case_checkpoint_directory_vanishes() {
+  mkdir gone
+  start_long_render "${with_exr[@]}" --checkpoint gone/ck.glint
+  rm -r gone
+  kill -s INT "$pid"
+  wait "$pid"
+  images_whole_without_checkpoint $? gone/ck.glint "No such file or directory"
+}
+
 # Outputs that cannot be written are refused before the render: no progress line appears.
 refused_before_render() { # STDERR_PATTERN ARGS...
   local pattern=$1

@@ -247,30 +247,60 @@ inline auto failer(const std::string& name) {
 
 }  // namespace detail::checkpoint
 
+/// Encodes the checkpoint of a render with `key` after `passes_done` passes, when its pixels
+/// hold the sums `sums` of `samples_per_pixel_done` samples each, handing its bytes to
+/// `put(const char* data, std::size_t size)` in order, in pieces of at most some hundred
+/// kilobytes: a checkpoint written this way is never held whole in memory.
+template <typename Put>
+void encode_checkpoint_pieces(const CheckpointKey& key, int passes_done, int samples_per_pixel_done,
+                              const PixelSums& sums, Put&& put) {
+  using namespace detail::checkpoint;
+  std::vector<char> piece(kFixedHeader + key.variant.size() + kSettingsAndPasses);
+  Writer out{piece.data()};
+  out.bytes(kCheckpointMagic, sizeof kCheckpointMagic);
+  out.u32(kCheckpointVersion);
+  out.u64(key.scene_hash);
+  out.u32(std::uint32_t(key.variant.size()));
+  out.bytes(key.variant.data(), key.variant.size());
+  for (const int v :
+       {key.width, key.height, key.samples_per_pixel, key.max_depth, key.max_pass_samples})
+    out.u32(std::uint32_t(v));
+  out.u64(key.seed);
+  out.u32(std::bit_cast<std::uint32_t>(key.antialias_sigma));
+  out.u32(std::uint32_t(passes_done));
+  out.u32(std::uint32_t(samples_per_pixel_done));
+  std::uint64_t hash = fnv1a(piece.data(), piece.size());
+  put(static_cast<const char*>(piece.data()), piece.size());
+
+  constexpr std::size_t kPiecePixels = std::size_t{1} << 14;
+  const std::vector<ColorSum>& pixels = sums.pixels();
+  for (std::size_t first = 0; first < pixels.size(); first += kPiecePixels) {
+    const std::size_t count = std::min(kPiecePixels, pixels.size() - first);
+    piece.resize(count * kBytesPerPixel);
+    out.at = piece.data();
+    for (std::size_t i = first; i < first + count; ++i)
+      for (const double v : {pixels[i].x, pixels[i].y, pixels[i].z})
+        out.u64(std::bit_cast<std::uint64_t>(v));
+    hash = fnv1a(piece.data(), piece.size(), hash);
+    put(static_cast<const char*>(piece.data()), piece.size());
+  }
+  piece.resize(8);
+  out.at = piece.data();
+  out.u64(hash);
+  put(static_cast<const char*>(piece.data()), piece.size());
+}
+
 /// The bytes of the checkpoint of a render with `key` after `passes_done` passes, when its
 /// pixels hold the sums `sums` of `samples_per_pixel_done` samples each.
 inline std::vector<char> encode_checkpoint(const CheckpointKey& key, int passes_done,
                                            int samples_per_pixel_done, const PixelSums& sums) {
-  using namespace detail::checkpoint;
-  std::vector<char> out(kFixedHeader + key.variant.size() + kSettingsAndPasses +
-                        sums.pixels().size() * kBytesPerPixel + 8);
-  Writer put{out.data()};
-  put.bytes(kCheckpointMagic, sizeof kCheckpointMagic);
-  put.u32(kCheckpointVersion);
-  put.u64(key.scene_hash);
-  put.u32(std::uint32_t(key.variant.size()));
-  put.bytes(key.variant.data(), key.variant.size());
-  for (const int v :
-       {key.width, key.height, key.samples_per_pixel, key.max_depth, key.max_pass_samples})
-    put.u32(std::uint32_t(v));
-  put.u64(key.seed);
-  put.u32(std::bit_cast<std::uint32_t>(key.antialias_sigma));
-  put.u32(std::uint32_t(passes_done));
-  put.u32(std::uint32_t(samples_per_pixel_done));
-  for (const ColorSum& pixel : sums.pixels())
-    for (const double v : {pixel.x, pixel.y, pixel.z})
-      put.u64(std::bit_cast<std::uint64_t>(v));
-  put.u64(fnv1a(out.data(), out.size() - 8));
+  std::vector<char> out;
+  out.reserve(detail::checkpoint::kFixedHeader + key.variant.size() +
+              detail::checkpoint::kSettingsAndPasses +
+              sums.pixels().size() * detail::checkpoint::kBytesPerPixel + 8);
+  encode_checkpoint_pieces(
+      key, passes_done, samples_per_pixel_done, sums,
+      [&](const char* data, std::size_t size) { out.insert(out.end(), data, data + size); });
   return out;
 }
 

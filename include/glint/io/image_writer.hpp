@@ -92,19 +92,30 @@ class StagedFile {
   const std::filesystem::path& target() const { return target_; }
   const std::filesystem::path& temporary() const { return temporary_; }
 
-  /// Writes the whole content, flushes it to the disk (so that a crash after the rename
-  /// cannot leave an empty image) and closes the file. On failure removes the temporary and
-  /// throws ImageWriteError.
+  /// Writes the whole content and finishes the file (finish()). On failure removes the
+  /// temporary and throws ImageWriteError.
   void write(const std::vector<char>& bytes) {
-    const char* data = bytes.data();
-    std::size_t left = bytes.size();
-    while (left > 0) {
-      const ssize_t written = ::write(fd_, data, std::min<std::size_t>(left, 1 << 30));
+    append(bytes.data(), bytes.size());
+    finish();
+  }
+
+  /// Writes the next `size` bytes of the content: a large file written piece by piece is never
+  /// held whole in memory. On failure removes the temporary and throws ImageWriteError.
+  void append(const char* data, std::size_t size) {
+    if (state_ != State::open) fail("the file is no longer open");
+    while (size > 0) {
+      const ssize_t written = ::write(fd_, data, std::min<std::size_t>(size, 1 << 30));
       if (written < 0 && errno == EINTR) continue;
       if (written <= 0) discard_and_fail(written < 0 ? std::strerror(errno) : "write failed");
       data += written;
-      left -= std::size_t(written);
+      size -= std::size_t(written);
     }
+  }
+
+  /// Flushes the content to the disk (so that a crash after the rename cannot leave an empty
+  /// file) and closes it. On failure removes the temporary and throws ImageWriteError.
+  void finish() {
+    if (state_ != State::open) fail("the file is no longer open");
     if (::fsync(fd_) != 0) discard_and_fail(std::strerror(errno));
     const int closed = ::close(std::exchange(fd_, -1));
     if (closed != 0) discard_and_fail(std::strerror(errno));
