@@ -284,6 +284,27 @@ refused_before_render() { # STDERR_PATTERN ARGS...
   no_temporaries
 }
 
+# A second output whose name the file system refuses (256 bytes, one more than NAME_MAX) is
+# refused before the render, and the first output's old file stays as it was, byte for byte;
+# so for --exr and --checkpoint.
+case_long_second_name() {
+  "$program" "$scene" -o short.png --spp 2 --quiet 2>err.log || fail "the first render failed"
+  cp short.png before.png
+  local long
+  long=$(printf '%0252d' 0)
+  refused_before_render \
+    "^glint-render: error: cannot write 0+\.pfm: the file name is 256 bytes long, more than the 255 its file system allows$" \
+    "$scene" -o short.png --hdr "$long.pfm"
+  refused_before_render "^glint-render: error: cannot write 0+\.glint: the file name is 258 bytes long" \
+    "$scene" -o short.png --hdr out.pfm --checkpoint "$long.glint"
+  if ! "$program" --exr x.exr 2>&1 | grep -q "without OpenEXR"; then
+    refused_before_render "^glint-render: error: cannot write 0+\.exr: the file name is 256 bytes long" \
+      "$scene" -o short.png --exr "$long.exr"
+  fi
+  cmp -s short.png before.png || fail "short.png was replaced"
+  [[ ! -e out.pfm ]] || fail "out.pfm was written"
+}
+
 case_hdr_is_directory() {
   mkdir out.pfm
   refused_before_render "^glint-render: error: cannot write out\.pfm: it is a directory$" \

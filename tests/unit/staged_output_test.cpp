@@ -3,6 +3,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <climits>
+
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -149,5 +151,16 @@ TEST_CASE("check_output_path refuses what cannot be written, naming it", "[image
   CHECK(problem(dir.path() / "taken.png") ==
         "cannot write " + base + "/taken.png: it is a directory");
   CHECK(problem(dir.path() / "sub/") == "cannot write " + base + "/sub/: the name is a directory");
+  // A name one byte beyond NAME_MAX (255 on Linux's file systems), and a path beyond PATH_MAX.
+  const std::string long_name = std::string(252, 'n') + ".pfm";
+  CHECK(problem(dir.path() / long_name) ==
+        "cannot write " + base + "/" + long_name +
+            ": the file name is 256 bytes long, more than the 255 its file system allows");
+  CHECK(problem(dir.path() / (std::string(251, 'n') + ".pfm")).empty());
+  fs::path deep = dir.path();
+  while (deep.native().size() < PATH_MAX)
+    deep /= std::string(200, 'd');
+  CHECK_THAT(problem(deep / "out.png"), Catch::Contains("the path is "));
+  // The temporaries that showed the directory writable are gone.
   CHECK(dir.names() == std::vector<std::string>{"file", "taken.png"});
 }

@@ -11,6 +11,7 @@
 #include <fcntl.h>
 #include <stb_image_write.h>
 #include <unistd.h>
+#include <climits>
 
 #include <algorithm>
 #include <cerrno>
@@ -38,27 +39,6 @@ inline std::uint8_t linear_to_srgb8(float linear) {
   const float encoded =
       linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
   return static_cast<std::uint8_t>(std::lround(encoded * 255.0f));
-}
-
-/// Throws ImageWriteError unless `target` looks writable: its directory exists and lets this
-/// process create files, and the target is not a directory. A program calls it before long
-/// work, so that a mistyped output fails at once instead of after the render; the write itself
-/// still checks everything again.
-inline void check_output_path(const std::filesystem::path& target) {
-  namespace fs = std::filesystem;
-  const auto fail = [&](const std::string& why) {
-    throw ImageWriteError("cannot write " + target.string() + ": " + why);
-  };
-  if (target.filename().empty()) fail("the name is a directory");
-  const fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  std::error_code error;
-  const fs::file_status status = fs::status(directory, error);
-  if (!fs::exists(status)) fail("directory " + directory.string() + " does not exist");
-  if (!fs::is_directory(status)) fail(directory.string() + " is not a directory");
-  // AT_EACCESS: the permissions of the effective user, who will create the file.
-  if (faccessat(AT_FDCWD, directory.c_str(), W_OK | X_OK, AT_EACCESS) != 0)
-    fail("directory " + directory.string() + " is not writable (" + std::strerror(errno) + ")");
-  if (fs::is_directory(fs::symlink_status(target, error))) fail("it is a directory");
 }
 
 /// A file written under a temporary name beside `target`, then renamed over it by commit().
@@ -158,6 +138,39 @@ class StagedFile {
   int fd_ = -1;
   State state_ = State::open;
 };
+
+/// Throws ImageWriteError unless `target` can be written: its name fits the file system (a
+/// file name of at most NAME_MAX bytes, a path shorter than PATH_MAX), its directory exists and
+/// lets this process create files there (shown by creating and removing a temporary beside the
+/// target, as the write will: permissions alone do not bind root, nor say that a file system is
+/// read-only or full of inodes), and the target is not a directory. A program calls it for every
+/// output before long work, so that a mistyped output fails at once instead of after the render,
+/// and before any other output was replaced; the write itself still checks everything again.
+inline void check_output_path(const std::filesystem::path& target) {
+  namespace fs = std::filesystem;
+  const auto fail = [&](const std::string& why) {
+    throw ImageWriteError("cannot write " + target.string() + ": " + why);
+  };
+  if (target.filename().empty()) fail("the name is a directory");
+  if (target.native().size() >= PATH_MAX)
+    fail("the path is " + std::to_string(target.native().size()) + " bytes long, more than " +
+         std::to_string(PATH_MAX - 1));
+  const fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code error;
+  const fs::file_status status = fs::status(directory, error);
+  if (!fs::exists(status)) fail("directory " + directory.string() + " does not exist");
+  if (!fs::is_directory(status)) fail(directory.string() + " is not a directory");
+  const long name_max = ::pathconf(directory.c_str(), _PC_NAME_MAX);
+  const std::size_t name_size = target.filename().native().size();
+  if (name_max > 0 && name_size > std::size_t(name_max))
+    fail("the file name is " + std::to_string(name_size) + " bytes long, more than the " +
+         std::to_string(name_max) + " its file system allows");
+  // AT_EACCESS: the permissions of the effective user, who will create the file.
+  if (faccessat(AT_FDCWD, directory.c_str(), W_OK | X_OK, AT_EACCESS) != 0)
+    fail("directory " + directory.string() + " is not writable (" + std::strerror(errno) + ")");
+  if (fs::is_directory(fs::symlink_status(target, error))) fail("it is a directory");
+  const StagedFile probe(target);  // removed again by its destructor
+}
 
 /// A file's path and its whole content.
 struct FileContents {
