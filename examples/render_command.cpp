@@ -79,7 +79,8 @@ constexpr std::string_view kOptionsAfterThreads =
                       model give the same image bit for bit
   --checkpoint FILE   save what --resume needs to continue the render to FILE: after a
                       pass, every --checkpoint-interval seconds, and at the end (finished,
-                      stopped by a signal or by --time-limit)
+                      stopped by a signal or by --time-limit); an existing FILE is refused
+                      (status 1) unless it is the one given to --resume
   --checkpoint-interval SECONDS
                       least time between two checkpoints while rendering (default 60;
                       0: after every pass)
@@ -455,7 +456,21 @@ std::string check_outputs(const Options& options) {
       if (image && resolved(*image) == resolved(*options.checkpoint))
         throw glint::ImageWriteError("cannot write the checkpoint " + *options.checkpoint +
                                      ": it is also the image " + *image);
+    // A checkpoint is replaced only by the render it holds, continued: a run repeated without
+    // --resume would replace the passes of hours with those of minutes.
+    std::error_code error;
+    const std::string& file = *options.checkpoint;
+    if (std::filesystem::exists(std::filesystem::symlink_status(file, error)) &&
+        !(options.resume && std::filesystem::equivalent(*options.resume, file, error)))
+      throw glint::ImageWriteError("cannot write the checkpoint " + file +
+                                   ": it exists, and may hold more of the render than this run "
+                                   "will: continue it with --resume " +
+                                   file + ", or remove it to start again");
   }
+  // What a run killed while writing (kill -9 during a checkpoint) left beside the targets.
+  for (const std::optional<std::string>& target :
+       {std::optional(output), options.hdr, options.exr, options.checkpoint})
+    if (target) glint::remove_stale_temporaries(*target);
   return output;
 }
 

@@ -212,7 +212,8 @@ if(GLINT_BASH)
           hdr_fails_while_writing hdr_is_directory output_is_directory read_only_directory
           scene_is_output threads_fail checkpoint_resume checkpoint_after_kill resume_refused
           time_limit_zero huge_values checkpoint_fails_complete checkpoint_fails_time_limit
-          checkpoint_fails_sigint checkpoint_directory_vanishes long_second_name)
+          checkpoint_fails_sigint checkpoint_directory_vanishes long_second_name
+          checkpoint_exists stale_temporaries)
     string(REPLACE "_" "-" name ${case})
     add_test(NAME "cli: ${name}"
              COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash ${case}

@@ -434,6 +434,45 @@ case_resume_refused() {
   [[ ! -e out.png && ! -e out.pfm ]] || fail "an image was written"
 }
 
+# A run repeated with an existing --checkpoint and no --resume would replace a longer render
+# with a shorter one: refused before rendering, the checkpoint as it was. Resumed from it, the
+# same file is replaced.
+case_checkpoint_exists() {
+  "$program" "$scene" "${long_render[@]}" --time-limit 0 --checkpoint ck.glint --quiet 2>err.log ||
+    fail "making the checkpoint failed (status $?)"
+  cp ck.glint before.glint
+  rm out.png out.pfm
+  refused_before_render \
+    "^glint-render: error: cannot write the checkpoint ck\.glint: it exists, and may hold more of the render than this run will: continue it with --resume ck\.glint, or remove it to start again$" \
+    "$scene" "${long_render[@]}" --checkpoint ck.glint
+  cmp -s ck.glint before.glint || fail "the checkpoint was changed"
+  [[ ! -e out.png && ! -e out.pfm ]] || fail "an image was written"
+  "$program" "$scene" "${long_render[@]}" --time-limit 0 --resume ck.glint --checkpoint ck.glint \
+    --quiet 2>err.log || fail "resuming into the same file failed (status $?)"
+  ! cmp -s ck.glint before.glint || fail "the resumed render's checkpoint was not written"
+}
+
+# Temporaries a killed run left beside the targets (kill -9 while a checkpoint was written) are
+# removed at the start; files of other names, of other targets, and symbolic links stay.
+case_stale_temporaries() {
+  echo stale >ck.glint.0123456789ab.glint-partial
+  echo stale >out.png.abcdef012345.glint-partial
+  echo precious >victim
+  ln -s victim ck.glint.fedcba987654.glint-partial
+  echo keep >ck.glint.0123456789AB.glint-partial
+  echo keep >other.glint.0123456789ab.glint-partial
+  echo keep >ck.glint.012345.glint-partial
+  "$program" "$scene" -o out.png --spp 2 --checkpoint ck.glint --quiet 2>err.log ||
+    fail "exit status $?"
+  [[ ! -e ck.glint.0123456789ab.glint-partial && ! -e out.png.abcdef012345.glint-partial ]] ||
+    fail "a stale temporary was left"
+  [[ -L ck.glint.fedcba987654.glint-partial && $(cat victim) == precious ]] ||
+    fail "a symbolic link, or what it points to, was changed"
+  [[ -f ck.glint.0123456789AB.glint-partial && -f other.glint.0123456789ab.glint-partial &&
+    -f ck.glint.012345.glint-partial ]] || fail "a file that is no temporary of a target was removed"
+  complete_png out.png
+}
+
 # --time-limit 0: the first pass, then a complete image of 1 sample per pixel, status 0.
 case_time_limit_zero() {
   "$program" "$scene" "${long_render[@]}" --time-limit 0 2>err.log

@@ -164,3 +164,33 @@ TEST_CASE("check_output_path refuses what cannot be written, naming it", "[image
   // The temporaries that showed the directory writable are gone.
   CHECK(dir.names() == std::vector<std::string>{"file", "taken.png"});
 }
+
+TEST_CASE("remove_stale_temporaries removes a target's own temporaries only", "[image][output]") {
+  Scratch dir("stale-temporaries");
+  const fs::path target = dir.path() / "out.png";
+  // Temporaries as StagedFile names them, one for a name so long that its prefix is cut.
+  const fs::path long_target = dir.path() / (std::string(250, 'x') + ".pfm");
+  const std::string long_temporary = std::string(228, 'x') + ".00000000abcd.glint-partial";
+  REQUIRE(long_temporary.size() == 255);
+  write_text(dir.path() / "out.png.0123456789ab.glint-partial", "stale");
+  write_text(dir.path() / long_temporary, "stale");
+  // Not temporaries of the target, or not files.
+  write_text(dir.path() / "out.png.0123456789AB.glint-partial", "keep");
+  write_text(dir.path() / "out.png.0123456789a.glint-partial", "keep");
+  write_text(dir.path() / "out.pn.0123456789ab.glint-partial", "keep");
+  write_text(dir.path() / "victim", "precious");
+  fs::create_symlink("victim", dir.path() / "out.png.fedcba987654.glint-partial");
+  fs::create_directory(dir.path() / "out.png.aaaaaaaaaaaa.glint-partial");
+  CHECK(glint::remove_stale_temporaries(target) == 1);
+  CHECK(glint::remove_stale_temporaries(long_target) == 1);
+  CHECK(glint::remove_stale_temporaries(target) == 0);
+  CHECK(read_text(dir.path() / "victim") == "precious");
+  CHECK(dir.names() == std::vector<std::string>{"out.pn.0123456789ab.glint-partial",
+                                                "out.png.0123456789AB.glint-partial",
+                                                "out.png.0123456789a.glint-partial",
+                                                "out.png.aaaaaaaaaaaa.glint-partial",
+                                                "out.png.fedcba987654.glint-partial", "victim"});
+  // What StagedFile itself makes is recognised.
+  const glint::StagedFile staged(long_target);
+  CHECK(glint::StagedFile::is_temporary_of(long_target, staged.temporary().filename().string()));
+}

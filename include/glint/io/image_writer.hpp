@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -45,6 +46,27 @@ inline std::uint8_t linear_to_srgb8(float linear) {
 /// Until then the target is untouched, and the destructor removes the temporary.
 class StagedFile {
  public:
+  /// How a temporary's name ends, after TARGET and a dot and 12 random hex digits.
+  static constexpr const char* kTemporaryEnd = ".glint-partial";
+  static constexpr std::size_t kTemporarySuffixSize = 1 + 12 + 14;
+
+  /// The part of a temporary's name that comes from `target`: its file name, shortened so that
+  /// the whole name fits in 255 bytes (the random part is never shortened).
+  static std::string temporary_prefix(const std::filesystem::path& target) {
+    return target.filename().string().substr(0, 255 - kTemporarySuffixSize);
+  }
+
+  /// True when `name` (a file name) is that of a temporary of `target`.
+  static bool is_temporary_of(const std::filesystem::path& target, std::string_view name) {
+    const std::string prefix = temporary_prefix(target);
+    if (name.size() != prefix.size() + kTemporarySuffixSize || !name.starts_with(prefix) ||
+        !name.ends_with(kTemporaryEnd) || name[prefix.size()] != '.')
+      return false;
+    for (const char c : name.substr(prefix.size() + 1, 12))
+      if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return false;
+    return true;
+  }
+
   /// Creates the temporary, TARGET.XXXXXXXXXXXX.glint-partial with random hex digits, as a
   /// new file (mode 0666 less the umask, as any new file). Throws ImageWriteError.
   explicit StagedFile(std::filesystem::path target) : target_(std::move(target)) {
@@ -116,11 +138,9 @@ class StagedFile {
   static std::filesystem::path temporary_name(const std::filesystem::path& target,
                                               std::uint64_t random) {
     char suffix[40];
-    std::snprintf(suffix, sizeof suffix, ".%012llx.glint-partial",
-                  static_cast<unsigned long long>(random & 0xffffffffffffULL));
-    // A name must fit in 255 bytes: shorten the target's part, not the random one.
-    std::string name = target.filename().string().substr(0, 255 - std::strlen(suffix));
-    return target.parent_path() / (name + suffix);
+    std::snprintf(suffix, sizeof suffix, ".%012llx%s",
+                  static_cast<unsigned long long>(random & 0xffffffffffffULL), kTemporaryEnd);
+    return target.parent_path() / (temporary_prefix(target) + suffix);
   }
 
   [[noreturn]] void fail(const std::string& why) const {
@@ -138,6 +158,29 @@ class StagedFile {
   int fd_ = -1;
   State state_ = State::open;
 };
+
+/// Removes the temporaries of `target` that a StagedFile made and never renamed or removed:
+/// what a process killed outright (SIGKILL, a crash, a power cut) while writing left behind.
+/// Only regular files named as StagedFile names them (TARGET.<12 hex digits>.glint-partial) go;
+/// a symbolic link or a directory of that name stays, and no link is followed. Returns how many
+/// were removed. A program calls it for its outputs before it writes them; a temporary of another
+/// process writing the same target at that moment would go too, and that write then fails
+/// (never writing a wrong file).
+inline int remove_stale_temporaries(const std::filesystem::path& target) {
+  namespace fs = std::filesystem;
+  const fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code error;
+  int removed = 0;
+  for (fs::directory_iterator it(directory, error), end; !error && it != end; it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    std::error_code ignored;
+    // unlink removes a link itself, never what it points to; only regular files are removed.
+    if (StagedFile::is_temporary_of(target, name) && it->is_regular_file(ignored) &&
+        !it->is_symlink(ignored) && ::unlink(it->path().c_str()) == 0)
+      ++removed;
+  }
+  return removed;
+}
 
 /// Throws ImageWriteError unless `target` can be written: its name fits the file system (a
 /// file name of at most NAME_MAX bytes, a path shorter than PATH_MAX), its directory exists and
