@@ -74,13 +74,14 @@ int main(int argc, char** argv) {
     cli::PassKeeper keeper(kProgram, options, settings, loaded.text_hash);
 
     const glint::RenderControl control{cli::ProgressPrinter(!options.quiet), keeper.callback(),
-                                       &cli::stop_requested};
-    const glint::RenderResult result = cli::with_renderer<Variant>(
+                                       &cli::stop_requested, options.checkpoint.has_value()};
+    glint::RenderResult result = cli::with_renderer<Variant>(
         cli::execution_model(kProgram, options), [&]<typename Renderer>() {
           return Renderer::render(scene, settings, control, keeper.start());
         });
-    return cli::finish_run(kProgram, options, output, settings, result, keeper,
-                           {std::to_string(result.stats.threads) + " threads", ""});
+    const std::string workers = std::to_string(result.stats.threads) + " threads";
+    return cli::finish_run(kProgram, options, output, settings, std::move(result), keeper,
+                           {workers, ""});
   } catch (...) {
     const cli::Failure failure = cli::current_failure(kProgram);
     std::cerr << failure.message;

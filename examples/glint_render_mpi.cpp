@@ -605,7 +605,8 @@ class Coordinator {
     };
     const std::uint64_t pixels = std::uint64_t(settings_.width) * std::uint64_t(settings_.height);
     glint::RenderResult result{
-        {}, {}, first_pass ? ends_[std::size_t(first_pass) - 1] : 0, first_pass, int(ends_.size())};
+        {}, {}, first_pass ? ends_[std::size_t(first_pass) - 1] : 0, first_pass, int(ends_.size()),
+        {}};
     const std::uint64_t samples_at_start = pixels * std::uint64_t(result.samples_per_pixel);
     samples_done_ = samples_at_start;
     double last_report = -1.0;
@@ -955,11 +956,13 @@ int run(const World& world, int argc, char** argv) {
     Coordinator coordinator(world, settings, sums, *renderer, threads, start.sums != nullptr);
     const glint::RenderControl control{cli::ProgressPrinter(!options.quiet), keeper->callback(),
                                        &cli::stop_requested};
-    const glint::RenderResult result = coordinator.render(control, start.passes_done);
+    glint::RenderResult result = coordinator.render(control, start.passes_done);
     renderer.reset();
+    // The sums of the last completed pass (the render stops between passes), for the checkpoint.
+    if (options.checkpoint) result.sums = std::move(sums);
     std::string lines = coordinator.report_lines(mpi.verbose);
     if (mpi.verbose) lines += load_line(times, mpi);
-    return cli::finish_run(kProgram, options, output, settings, result, *keeper,
+    return cli::finish_run(kProgram, options, output, settings, std::move(result), *keeper,
                            {coordinator.workers(), lines});
   } catch (const glint::ImageWriteError&) {
     // The render is over and every rank has ended its work: only rank 0 fails.

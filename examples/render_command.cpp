@@ -553,7 +553,6 @@ PassKeeper::PassKeeper(const Program& program, const Options& options,
     resumed_ = glint::read_checkpoint(*options.resume);
     check_execution_model(*resumed_, program, model, *options.resume);
     glint::check_checkpoint_matches(*resumed_, key_, *options.resume);
-    last_sums_ = resumed_->sums;
     last_passes_ = resumed_->passes_done;
     last_spp_ = resumed_->samples_per_pixel_done;
   }
@@ -565,11 +564,8 @@ glint::RenderStart PassKeeper::start() const {
 }
 
 bool PassKeeper::pass_done(const glint::PassReport& pass) {
-  if (options_.checkpoint) {
-    last_sums_ = pass.sums;
-    last_passes_ = pass.passes_done;
-    last_spp_ = pass.samples_per_pixel;
-  }
+  last_passes_ = pass.passes_done;
+  last_spp_ = pass.samples_per_pixel;
   const bool last = pass.passes_done == pass.pass_count;
   if (options_.time_limit && pass.elapsed_seconds >= *options_.time_limit && !last) {
     time_is_up_ = true;
@@ -594,9 +590,8 @@ glint::PassCallback PassKeeper::callback() {
   return [this](const glint::PassReport& pass) { return pass_done(pass); };
 }
 
-void PassKeeper::write_final_checkpoint() const {
-  write_staged(
-      {checkpoint_output(*options_.checkpoint, key_, last_passes_, last_spp_, last_sums_)});
+void PassKeeper::write_final_checkpoint(const glint::PixelSums& sums) const {
+  write_staged({checkpoint_output(*options_.checkpoint, key_, last_passes_, last_spp_, sums)});
 }
 
 // --- The end of a run ---------------------------------------------------------------------
@@ -637,7 +632,7 @@ std::vector<glint::ExrAttribute> exr_attributes(const Program& program, const Op
 #endif
 
 int finish_run(const Program& program, const Options& options, const std::string& output,
-               const glint::RenderSettings& settings, const glint::RenderResult& result,
+               const glint::RenderSettings& settings, glint::RenderResult result,
                const PassKeeper& keeper, const RunReport& report) {
   const char* name = program.name;
   const int signal = stop_signal.load();
@@ -646,6 +641,19 @@ int finish_run(const Program& program, const Options& options, const std::string
                  signal_name(signal));
     return 128 + signal;
   }
+  // The checkpoint first, so that its sums (24 bytes a pixel) are freed before the images are
+  // encoded. It is a means to the images, which are written whatever becomes of it: its
+  // failure is reported last, and makes the status 1.
+  std::string checkpoint_failure;
+  if (options.checkpoint) {
+    try {
+      keeper.write_final_checkpoint(result.sums);
+    } catch (const glint::ImageWriteError& error) {
+      checkpoint_failure = error.what();
+    }
+    result.sums = glint::PixelSums();
+  }
+
   std::vector<glint::FileContents> files{
       {output, glint::encode_png(result.film, options.tone_mapping)}};
   if (options.hdr) files.push_back({*options.hdr, glint::encode_pfm(result.film)});
@@ -664,16 +672,6 @@ int finish_run(const Program& program, const Options& options, const std::string
   for (const glint::FileContents& file : files)
     images.push_back({file.path, [&file](glint::StagedFile& staged) { staged.write(file.bytes); }});
   write_staged(images);
-  // The checkpoint is a means to the images, which are written whatever becomes of it: its
-  // failure is reported last, and makes the status 1.
-  std::string checkpoint_failure;
-  if (options.checkpoint) {
-    try {
-      keeper.write_final_checkpoint();
-    } catch (const glint::ImageWriteError& error) {
-      checkpoint_failure = error.what();
-    }
-  }
 
   if (!options.quiet) {
     const glint::RenderStats& stats = result.stats;
