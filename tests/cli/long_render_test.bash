@@ -227,17 +227,17 @@ checkpoint_limit=$((long_width * long_height * 18 / 1024)) # blocks: above the P
 with_exr=()
 "$program" --exr x.exr 2>&1 | grep -q "without OpenEXR" || with_exr=(--exr out.exr)
 images_whole_without_checkpoint() { # STATUS_FOUND CHECKPOINT PROBLEM
+  complete_png out.png
+  complete_pfm out.pfm "$long_width" "$long_height"
+  if ((${#with_exr[@]})); then
+    [[ $(head -c 4 out.exr | od -An -tx1 | tr -d ' \n') == 762f3101 ]] || fail "out.exr is no EXR"
+  fi
   (($1 == 1)) || fail "exit status $1, expected 1"
   local message
   message=$(tail -n 1 err.log)
   [[ $message == "glint-render: error: no checkpoint: cannot write $2: $3 (the images were written)" ]] ||
     fail "last line on stderr is not the checkpoint's failure: '$message'"
   ! grep -q "holds the render so far" err.log || fail "the missing checkpoint is offered for --resume"
-  complete_png out.png
-  complete_pfm out.pfm "$long_width" "$long_height"
-  if ((${#with_exr[@]})); then
-    [[ $(head -c 4 out.exr | od -An -tx1 | tr -d ' \n') == 762f3101 ]] || fail "out.exr is no EXR"
-  fi
   [[ ! -e $2 ]] || fail "$2 exists"
   no_temporaries
 }
