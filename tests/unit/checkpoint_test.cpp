@@ -14,7 +14,6 @@
 #include <limits>
 #include <string>
 #include <thread>
-#include <tuple>
 #include <vector>
 
 #include "glint/io/checkpoint.hpp"
@@ -367,9 +366,14 @@ TEST_CASE("read_checkpoint reads in pieces, and checks a header's size before al
 
   // Headers claiming 32768x32768 (beyond glint's limits) and 8192x8192 (within them, 1.6 GB of
   // sums) over a few bytes, from a file and from a pipe: refused before the sums are allocated.
-  for (const auto& [width, height, message] :
-       {std::tuple(32768u, 32768u, std::string("an image size of 32768x32768")),
-        std::tuple(8192u, 8192u, std::string("it is truncated"))}) {
+  struct Claim {
+    std::uint32_t width, height;
+    std::string message;
+  };
+  for (const Claim& size : {Claim{32768, 32768, "an image size of 32768x32768"},
+                            Claim{8192, 8192, "it is truncated"}}) {
+    const std::uint32_t width = size.width, height = size.height;
+    const std::string& message = size.message;
     CAPTURE(width);
     std::vector<char> claim = bytes;
     put32(claim, kWidthAt, width);
