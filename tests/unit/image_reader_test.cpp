@@ -106,7 +106,7 @@ TEST_CASE("read_pfm: a PNG, binary data and endless devices are refused from the
   const glint_test::ChildRun from_png = refused_in_child(png, "not a colour PFM file");
   CHECK(from_png.status == 0);
   CHECK(from_png.peak_kb < kBoundKb);
-  // Devices that never end: before, `>>` read /dev/zero's first word for ever.
+  // Devices that never end: a header parsed from an unbounded stream would read for ever.
   for (const char* device : {"/dev/zero", "/dev/urandom"}) {
     CAPTURE(device);
     const glint_test::ChildRun run = refused_in_child(device, "not a colour PFM file");
