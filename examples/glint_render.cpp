@@ -36,7 +36,8 @@ the process and then its process group).
 Outputs are checked before rendering and written to new temporary files beside them, renamed
 into place only when all were written.
 Exit status: 0 on success (--time-limit included), 1 for a bad scene, an unwritable output,
-a checkpoint that cannot be resumed or a CPU without an instruction set this build uses,
+a checkpoint that cannot be resumed or written at the end (the images are written first)
+or a CPU without an instruction set this build uses,
 2 for bad options,
 3 for a valid scene that this variant cannot render (a shading kind it was built without),
 128 + the signal's number when a signal stopped the render (130 for SIGINT).
@@ -73,13 +74,14 @@ int main(int argc, char** argv) {
     cli::PassKeeper keeper(kProgram, options, settings, loaded.text_hash);
 
     const glint::RenderControl control{cli::ProgressPrinter(!options.quiet), keeper.callback(),
-                                       &cli::stop_requested};
-    const glint::RenderResult result = cli::with_renderer<Variant>(
+                                       &cli::stop_requested, options.checkpoint.has_value()};
+    glint::RenderResult result = cli::with_renderer<Variant>(
         cli::execution_model(kProgram, options), [&]<typename Renderer>() {
           return Renderer::render(scene, settings, control, keeper.start());
         });
-    return cli::finish_run(kProgram, options, output, settings, result, keeper,
-                           {std::to_string(result.stats.threads) + " threads", ""});
+    const std::string workers = std::to_string(result.stats.threads) + " threads";
+    return cli::finish_run(kProgram, options, output, settings, std::move(result), keeper,
+                           {workers, ""});
   } catch (...) {
     const cli::Failure failure = cli::current_failure(kProgram);
     std::cerr << failure.message;

@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <csignal>
 #include <cstdint>
@@ -85,7 +86,7 @@ into place only when all were written, after every rank has ended its work: a ra
 makes mpirun end the run, and no image is written.
 Exit status (rank 0's, which mpirun returns unless it was signalled itself): 0 on success
 (--time-limit included), 1 for a bad scene, an unwritable output, a checkpoint that cannot be
-resumed, a CPU without an instruction set this build uses or a rank that failed, 2 for bad
+resumed or written at the end (the images are written first), a CPU without an instruction set this build uses or a rank that failed, 2 for bad
 options, 3 for a valid scene that this variant cannot render (a shading kind it was built
 without), 128 + the signal's number when a signal stopped the render (138 for SIGUSR1).
 )",
@@ -290,6 +291,52 @@ int agree(const World& world, const std::optional<cli::Failure>& mine) {
     std::cerr << describe_failure(chosen[0], text);
   }
   return chosen[1];
+}
+
+/// Throws unless this rank renders the image rank 0 renders: the same variant and execution
+/// model and every setting that changes the image (the thread count does not), naming the
+/// first difference. Every rank's work goes into one image, so ranks started with different
+/// options (mpirun's A : B form) would otherwise mix two renders into one. The scene's bytes
+/// are agreed on elsewhere (rank 0 sends them, or --scene-everywhere compares their hashes).
+void check_same_image(const cli::Options& options, const glint::RenderSettings& settings) {
+  const bool scalar = cli::execution_model(kProgram, options) == cli::ExecutionModel::scalar;
+  const std::string renderer =
+      std::string(kProgram.variant) + (scalar ? ", scalar" : ", wavefront");
+  std::uint64_t size = renderer.size();
+  MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  std::string rank0_renderer = renderer;  // rank 0's own, elsewhere overwritten
+  rank0_renderer.resize(std::size_t(size));
+  MPI_Bcast(rank0_renderer.data(), int(size), MPI_CHAR, 0, MPI_COMM_WORLD);
+
+  struct Field {
+    const char* name;
+    std::uint64_t value;
+  };
+  const Field mine[] = {
+      {"width", std::uint64_t(settings.width)},
+      {"height", std::uint64_t(settings.height)},
+      {"samples per pixel", std::uint64_t(settings.samples_per_pixel)},
+      {"max depth", std::uint64_t(settings.max_depth)},
+      {"samples per pass at most", std::uint64_t(settings.max_pass_samples)},
+      {"seed", settings.seed},
+      {"antialias sigma bits", std::bit_cast<std::uint32_t>(settings.antialias_sigma)}};
+  constexpr std::size_t kFields = std::size(mine);
+  std::uint64_t rank0[kFields];
+  for (std::size_t i = 0; i < kFields; ++i)
+    rank0[i] = mine[i].value;
+  MPI_Bcast(rank0, int(kFields), MPI_UINT64_T, 0, MPI_COMM_WORLD);
+
+  const std::string advice =
+      ": every rank must be started with the same image options (--seed, --max-depth, --spp, "
+      "--width, --height, --scalar) and the same program";
+  if (rank0_renderer != renderer)
+    throw glint::Error("this rank renders with " + renderer + ", rank 0 with " + rank0_renderer +
+                       advice);
+  for (std::size_t i = 0; i < kFields; ++i)
+    if (rank0[i] != mine[i].value)
+      throw glint::Error(std::string("this rank has ") + mine[i].name + " " +
+                         std::to_string(mine[i].value) + ", rank 0 has " +
+                         std::to_string(rank0[i]) + advice);
 }
 
 /// Runs a step on this rank, catching its failure for agree().
@@ -558,7 +605,8 @@ class Coordinator {
     };
     const std::uint64_t pixels = std::uint64_t(settings_.width) * std::uint64_t(settings_.height);
     glint::RenderResult result{
-        {}, {}, first_pass ? ends_[std::size_t(first_pass) - 1] : 0, first_pass, int(ends_.size())};
+        {}, {}, first_pass ? ends_[std::size_t(first_pass) - 1] : 0, first_pass, int(ends_.size()),
+        {}};
     const std::uint64_t samples_at_start = pixels * std::uint64_t(result.samples_per_pixel);
     samples_done_ = samples_at_start;
     double last_report = -1.0;
@@ -877,6 +925,8 @@ int run(const World& world, int argc, char** argv) {
       return status;
     times.ready = seconds_since(start);
   }
+  if (int status = agree(world, attempt([&] { check_same_image(options, settings); })))
+    return status;
   const glint::TileGrid grid(settings);
   const int threads = int(std::min<std::size_t>(std::size_t(settings.threads), grid.count));
 
@@ -906,11 +956,13 @@ int run(const World& world, int argc, char** argv) {
     Coordinator coordinator(world, settings, sums, *renderer, threads, start.sums != nullptr);
     const glint::RenderControl control{cli::ProgressPrinter(!options.quiet), keeper->callback(),
                                        &cli::stop_requested};
-    const glint::RenderResult result = coordinator.render(control, start.passes_done);
+    glint::RenderResult result = coordinator.render(control, start.passes_done);
     renderer.reset();
+    // The sums of the last completed pass (the render stops between passes), for the checkpoint.
+    if (options.checkpoint) result.sums = std::move(sums);
     std::string lines = coordinator.report_lines(mpi.verbose);
     if (mpi.verbose) lines += load_line(times, mpi);
-    return cli::finish_run(kProgram, options, output, settings, result, *keeper,
+    return cli::finish_run(kProgram, options, output, settings, std::move(result), *keeper,
                            {coordinator.workers(), lines});
   } catch (const glint::ImageWriteError&) {
     // The render is over and every rank has ended its work: only rank 0 fails.

@@ -22,6 +22,7 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <utility>
 
@@ -78,7 +79,8 @@ constexpr std::string_view kOptionsAfterThreads =
                       model give the same image bit for bit
   --checkpoint FILE   save what --resume needs to continue the render to FILE: after a
                       pass, every --checkpoint-interval seconds, and at the end (finished,
-                      stopped by a signal or by --time-limit)
+                      stopped by a signal or by --time-limit); an existing FILE is refused
+                      (status 1) unless it is the one given to --resume
   --checkpoint-interval SECONDS
                       least time between two checkpoints while rendering (default 60;
                       0: after every pass)
@@ -390,28 +392,48 @@ void check_output(const std::string& output, const std::string& scene) {
     throw glint::ImageWriteError("cannot write " + output + ": it is the scene file " + scene);
 }
 
+/// A file to write: its target and what writes its content into the temporary (write() or
+/// append() then finish()).
+struct StagedOutput {
+  std::filesystem::path path;
+  std::function<void(glint::StagedFile&)> write;
+};
+
 /// Writes every file to a new temporary file, then renames them all into place only when all
 /// were written; on any failure, or a second signal, no temporary is left.
-void write_staged(const std::vector<glint::FileContents>& files) {
+void write_staged(const std::vector<StagedOutput>& outputs) {
   const ForgetTemporaries forget;
   std::vector<glint::StagedFile> staged;
-  staged.reserve(files.size());
+  staged.reserve(outputs.size());
   {
     const BlockStopSignals block;
-    for (const glint::FileContents& file : files) {
-      staged.emplace_back(file.path);
+    for (const StagedOutput& output : outputs) {
+      staged.emplace_back(output.path);
       const std::string& name = staged.back().temporary().native();
       if (name.size() >= PATH_MAX)
-        throw glint::ImageWriteError("cannot write " + file.path.string() + ": path too long");
+        throw glint::ImageWriteError("cannot write " + output.path.string() + ": path too long");
       std::memcpy(temporaries[temporary_count.load()], name.c_str(), name.size() + 1);
       temporary_count.fetch_add(1);
     }
   }
-  for (std::size_t i = 0; i < files.size(); ++i)
-    staged[i].write(files[i].bytes);
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+    outputs[i].write(staged[i]);
   const BlockStopSignals block;
   for (glint::StagedFile& file : staged)
     file.commit();
+}
+
+/// The checkpoint as a StagedOutput, encoded piece by piece into its temporary: never a copy of
+/// the sums (24 bytes a pixel) in memory.
+StagedOutput checkpoint_output(const std::string& path, const glint::CheckpointKey& key,
+                               int passes_done, int samples_per_pixel_done,
+                               const glint::PixelSums& sums) {
+  return {path, [&key, passes_done, samples_per_pixel_done, &sums](glint::StagedFile& file) {
+            glint::encode_checkpoint_pieces(
+                key, passes_done, samples_per_pixel_done, sums,
+                [&](const char* data, std::size_t size) { file.append(data, size); });
+            file.finish();
+          }};
 }
 
 }  // namespace
@@ -434,7 +456,21 @@ std::string check_outputs(const Options& options) {
       if (image && resolved(*image) == resolved(*options.checkpoint))
         throw glint::ImageWriteError("cannot write the checkpoint " + *options.checkpoint +
                                      ": it is also the image " + *image);
+    // A checkpoint is replaced only by the render it holds, continued: a run repeated without
+    // --resume would replace the passes of hours with those of minutes.
+    std::error_code error;
+    const std::string& file = *options.checkpoint;
+    if (std::filesystem::exists(std::filesystem::symlink_status(file, error)) &&
+        !(options.resume && std::filesystem::equivalent(*options.resume, file, error)))
+      throw glint::ImageWriteError("cannot write the checkpoint " + file +
+                                   ": it exists, and may hold more of the render than this run "
+                                   "will: continue it with --resume " +
+                                   file + ", or remove it to start again");
   }
+  // What a run killed while writing (kill -9 during a checkpoint) left beside the targets.
+  for (const std::optional<std::string>& target :
+       {std::optional(output), options.hdr, options.exr, options.checkpoint})
+    if (target) glint::remove_stale_temporaries(*target);
   return output;
 }
 
@@ -517,7 +553,6 @@ PassKeeper::PassKeeper(const Program& program, const Options& options,
     resumed_ = glint::read_checkpoint(*options.resume);
     check_execution_model(*resumed_, program, model, *options.resume);
     glint::check_checkpoint_matches(*resumed_, key_, *options.resume);
-    last_sums_ = resumed_->sums;
     last_passes_ = resumed_->passes_done;
     last_spp_ = resumed_->samples_per_pixel_done;
   }
@@ -529,11 +564,8 @@ glint::RenderStart PassKeeper::start() const {
 }
 
 bool PassKeeper::pass_done(const glint::PassReport& pass) {
-  if (options_.checkpoint) {
-    last_sums_ = pass.sums;
-    last_passes_ = pass.passes_done;
-    last_spp_ = pass.samples_per_pixel;
-  }
+  last_passes_ = pass.passes_done;
+  last_spp_ = pass.samples_per_pixel;
   const bool last = pass.passes_done == pass.pass_count;
   if (options_.time_limit && pass.elapsed_seconds >= *options_.time_limit && !last) {
     time_is_up_ = true;
@@ -543,9 +575,8 @@ bool PassKeeper::pass_done(const glint::PassReport& pass) {
   if (options_.checkpoint && !last &&
       pass.elapsed_seconds - last_checkpoint_ >= options_.checkpoint_interval) {
     try {
-      write_staged(
-          {{*options_.checkpoint,
-            glint::encode_checkpoint(key_, pass.passes_done, pass.samples_per_pixel, pass.sums)}});
+      write_staged({checkpoint_output(*options_.checkpoint, key_, pass.passes_done,
+                                      pass.samples_per_pixel, pass.sums)});
     } catch (const glint::ImageWriteError& error) {
       // Hours of rendering are worth more than one checkpoint: the next one may succeed.
       std::fprintf(stderr, "\n%s: warning: no checkpoint: %s\n", program_.name, error.what());
@@ -559,8 +590,8 @@ glint::PassCallback PassKeeper::callback() {
   return [this](const glint::PassReport& pass) { return pass_done(pass); };
 }
 
-std::vector<char> PassKeeper::final_checkpoint() const {
-  return glint::encode_checkpoint(key_, last_passes_, last_spp_, last_sums_);
+void PassKeeper::write_final_checkpoint(const glint::PixelSums& sums) const {
+  write_staged({checkpoint_output(*options_.checkpoint, key_, last_passes_, last_spp_, sums)});
 }
 
 // --- The end of a run ---------------------------------------------------------------------
@@ -601,7 +632,7 @@ std::vector<glint::ExrAttribute> exr_attributes(const Program& program, const Op
 #endif
 
 int finish_run(const Program& program, const Options& options, const std::string& output,
-               const glint::RenderSettings& settings, const glint::RenderResult& result,
+               const glint::RenderSettings& settings, glint::RenderResult result,
                const PassKeeper& keeper, const RunReport& report) {
   const char* name = program.name;
   const int signal = stop_signal.load();
@@ -610,6 +641,19 @@ int finish_run(const Program& program, const Options& options, const std::string
                  signal_name(signal));
     return 128 + signal;
   }
+  // The checkpoint first, so that its sums (24 bytes a pixel) are freed before the images are
+  // encoded. It is a means to the images, which are written whatever becomes of it: its
+  // failure is reported last, and makes the status 1.
+  std::string checkpoint_failure;
+  if (options.checkpoint) {
+    try {
+      keeper.write_final_checkpoint(result.sums);
+    } catch (const glint::ImageWriteError& error) {
+      checkpoint_failure = error.what();
+    }
+    result.sums = glint::PixelSums();
+  }
+
   std::vector<glint::FileContents> files{
       {output, glint::encode_png(result.film, options.tone_mapping)}};
   if (options.hdr) files.push_back({*options.hdr, glint::encode_pfm(result.film)});
@@ -624,8 +668,10 @@ int finish_run(const Program& program, const Options& options, const std::string
     files.push_back({*options.exr, std::move(exr.bytes)});
   }
 #endif
-  if (options.checkpoint) files.push_back({*options.checkpoint, keeper.final_checkpoint()});
-  write_staged(files);
+  std::vector<StagedOutput> images;
+  for (const glint::FileContents& file : files)
+    images.push_back({file.path, [&file](glint::StagedFile& staged) { staged.write(file.bytes); }});
+  write_staged(images);
 
   if (!options.quiet) {
     const glint::RenderStats& stats = result.stats;
@@ -655,24 +701,27 @@ int finish_run(const Program& program, const Options& options, const std::string
                  "written to %s as %g\n",
                  name, clamped_halves, options.exr->c_str(), double(glint::kExrLargestHalf));
 #endif
-  if (options.checkpoint && !result.complete())
+  if (options.checkpoint && !result.complete() && checkpoint_failure.empty())
     std::fprintf(stderr, "%s: %s holds the render so far: continue it with --resume %s\n", name,
                  options.checkpoint->c_str(), options.checkpoint->c_str());
-  if (signal != 0) {
+  if (signal != 0)
     std::fprintf(stderr,
                  "%s: stopped by %s: %s holds %d of %d samples per pixel (%d of %d "
                  "passes)\n",
                  name, signal_name(signal), output.c_str(), result.samples_per_pixel,
                  settings.samples_per_pixel, result.passes_done, result.pass_count);
-    return 128 + signal;
-  }
-  if (keeper.time_is_up())
+  else if (keeper.time_is_up())
     std::fprintf(stderr,
                  "%s: time limit of %g s reached: %s holds %d of %d samples per pixel "
                  "(%d of %d passes)\n",
                  name, *options.time_limit, output.c_str(), result.samples_per_pixel,
                  settings.samples_per_pixel, result.passes_done, result.pass_count);
-  return 0;
+  if (!checkpoint_failure.empty()) {
+    std::fprintf(stderr, "%s: error: no checkpoint: %s (the images were written)\n", name,
+                 checkpoint_failure.c_str());
+    return 1;
+  }
+  return signal != 0 ? 128 + signal : 0;
 }
 
 Failure current_failure(const Program& program) {

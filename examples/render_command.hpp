@@ -135,8 +135,9 @@ glint::RenderSettings render_settings(const Options& options, const glint::Scene
 // --- Checkpoints and the passes -----------------------------------------------------------
 
 /// The checkpoints of a run: the key its checkpoints carry, the checkpoint it resumes, and, kept
-/// by the pass callback, the state of the last completed pass for the checkpoint written at the
-/// end (whatever stops the render after it). Between passes it writes a checkpoint every
+/// by the pass callback, the count of the last completed pass for the checkpoint written at the
+/// end (whatever stops the render after it) from the render's own sums. Between passes it writes a
+/// checkpoint every
 /// --checkpoint-interval seconds and applies --time-limit.
 class PassKeeper {
  public:
@@ -155,16 +156,17 @@ class PassKeeper {
   glint::PassCallback callback();
 
   bool time_is_up() const { return time_is_up_; }
-  /// The checkpoint's bytes after the last completed pass.
-  std::vector<char> final_checkpoint() const;
+  /// Writes the checkpoint of the last completed pass, whose sums are `sums` (the render's
+  /// RenderResult::sums, kept with RenderControl::keep_sums), to --checkpoint's file, piece by
+  /// piece. Throws ImageWriteError naming the file.
+  void write_final_checkpoint(const glint::PixelSums& sums) const;
 
  private:
   const Program& program_;
   const Options& options_;
   glint::CheckpointKey key_;
   std::optional<glint::Checkpoint> resumed_;
-  glint::PixelSums last_sums_;
-  int last_passes_ = 0, last_spp_ = 0;
+  int last_passes_ = 0, last_spp_ = 0;  ///< of the last completed pass
   bool time_is_up_ = false;
   double last_checkpoint_ = 0.0;
 };
@@ -179,11 +181,12 @@ struct RunReport {
   std::string after_summary;
 };
 
-/// Writes the run's files (the images and the checkpoint, together or none) and says how it
-/// ended: the summary line, warnings, what a stop left. Returns the exit status. Throws
-/// ImageWriteError when a file cannot be written.
+/// Writes the run's checkpoint (from `result.sums`, then freed), then its images (together or
+/// none), and says how it ended: the summary line, warnings, what a stop left. Returns the exit
+/// status: 1 when the checkpoint could not be written (the images were all the same). Throws
+/// ImageWriteError when an image cannot be written.
 int finish_run(const Program& program, const Options& options, const std::string& output,
-               const glint::RenderSettings& settings, const glint::RenderResult& result,
+               const glint::RenderSettings& settings, glint::RenderResult result,
                const PassKeeper& keeper, const RunReport& report);
 
 /// A run that failed: its exit status and what to print on stderr (ending in a newline).

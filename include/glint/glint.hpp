@@ -10,6 +10,7 @@
 #include "glint/io/checkpoint.hpp"
 #include "glint/io/image_reader.hpp"
 #include "glint/io/image_writer.hpp"
+#include "glint/io/input_file.hpp"
 #include "glint/io/scene_reader.hpp"
 #include "glint/io/scene_writer.hpp"
 #include "glint/render/renderer.hpp"

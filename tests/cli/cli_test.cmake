@@ -59,6 +59,14 @@ glint_cli_test(overlapping-glass STATUS 1
 glint_cli_test(huge-radius STATUS 1
                STDERR "huge-radius.scene:5: error: sphere radius must be at most 1e.10 .the scene format's limit., got 2e.10"
                ARGS ${PROJECT_SOURCE_DIR}/scenes/invalid/huge-radius.scene -o out.png OUTPUT out.png)
+# Endless devices as the scene or the checkpoint to resume: refused from their first bytes.
+glint_cli_test(scene-dev-zero STATUS 1 STDERR "^/dev/zero:1: error: line contains a NUL byte"
+               ARGS /dev/zero -o out.png OUTPUT out.png)
+glint_cli_test(resume-dev-zero STATUS 1
+               STDERR "cannot resume from /dev/zero: it is not a glint checkpoint"
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --resume /dev/zero OUTPUT out.png)
+glint_cli_test(resume-dev-urandom STATUS 1 STDERR "cannot resume from /dev/urandom: "
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --resume /dev/urandom OUTPUT out.png)
 glint_cli_test(missing-output-directory STATUS 1 STDERR "directory .* does not exist"
                ARGS ${glint_cli_scenes}/tiny.scene -o nowhere/out.png)
 glint_cli_test(output-not-png STATUS 2 STDERR "-o writes an 8-bit sRGB PNG: the file name must end in .png, got 'out.jpg'"
@@ -203,14 +211,16 @@ if(GLINT_BASH)
   foreach(case sigint sigterm sighup group_signal timeout second_signal sigint_quiet planted_symlinks
           hdr_fails_while_writing hdr_is_directory output_is_directory read_only_directory
           scene_is_output threads_fail checkpoint_resume checkpoint_after_kill resume_refused
-          time_limit_zero huge_values)
+          time_limit_zero huge_values checkpoint_fails_complete checkpoint_fails_time_limit
+          checkpoint_fails_sigint checkpoint_directory_vanishes long_second_name
+          checkpoint_exists stale_temporaries)
     string(REPLACE "_" "-" name ${case})
     add_test(NAME "cli: ${name}"
              COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash ${case}
                      $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
                      ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli SKIP_RETURN_CODE 77)
-    if(case MATCHES "^(checkpoint_|group_signal)")
+    if(case MATCHES "^(checkpoint_resume|checkpoint_after_kill|group_signal)$")
       set_tests_properties("cli: ${name}" PROPERTIES LABELS "cli;long")
     endif()
     if(GLINT_SANITIZE)

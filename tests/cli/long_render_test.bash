@@ -219,6 +219,59 @@ case_hdr_fails_while_writing() {
   no_temporaries
 }
 
+# A checkpoint that cannot be written at the end (the disk full: here a file size limit that
+# the images fit under, the checkpoint of 24 bytes a pixel not; or its directory removed
+# during the render): the images are written whole all the same, and the status is 1 with the
+# checkpoint named last. For a complete render, one stopped by --time-limit and one by SIGINT.
+checkpoint_limit=$((long_width * long_height * 18 / 1024)) # blocks: above the PFM, below it
+with_exr=()
+"$program" --exr x.exr 2>&1 | grep -q "without OpenEXR" || with_exr=(--exr out.exr)
+images_whole_without_checkpoint() { # STATUS_FOUND CHECKPOINT PROBLEM
+  complete_png out.png
+  complete_pfm out.pfm "$long_width" "$long_height"
+  if ((${#with_exr[@]})); then
+    [[ $(head -c 4 out.exr | od -An -tx1 | tr -d ' \n') == 762f3101 ]] || fail "out.exr is no EXR"
+  fi
+  (($1 == 1)) || fail "exit status $1, expected 1"
+  local message
+  message=$(tail -n 1 err.log)
+  [[ $message == "glint-render: error: no checkpoint: cannot write $2: $3 (the images were written)" ]] ||
+    fail "last line on stderr is not the checkpoint's failure: '$message'"
+  ! grep -q "holds the render so far" err.log || fail "the missing checkpoint is offered for --resume"
+  [[ ! -e $2 ]] || fail "$2 exists"
+  no_temporaries
+}
+case_checkpoint_fails_complete() {
+  (ulimit -f "$checkpoint_limit" &&
+    "$program" "$scene" "${long_render[@]}" "${with_exr[@]}" --spp 4 --checkpoint ck.glint 2>err.log)
+  images_whole_without_checkpoint $? ck.glint "File too large"
+  grep -q "^glint-render (.*): .* -> out\.png: ${long_width}x${long_height}, 4 spp," err.log ||
+    fail "no summary line"
+}
+case_checkpoint_fails_time_limit() {
+  (ulimit -f "$checkpoint_limit" &&
+    "$program" "$scene" "${long_render[@]}" "${with_exr[@]}" --time-limit 0 --checkpoint ck.glint 2>err.log)
+  images_whole_without_checkpoint $? ck.glint "File too large"
+  grep -q "^glint-render: time limit of 0 s reached: out\.png holds 1 of 1024 samples" err.log ||
+    fail "no time limit message"
+}
+case_checkpoint_fails_sigint() {
+  launcher=(bash -c 'ulimit -f "$0" && exec "$@"' "$checkpoint_limit")
+  start_long_render "${with_exr[@]}" --checkpoint ck.glint
+  kill -s INT "$pid"
+  wait "$pid"
+  images_whole_without_checkpoint $? ck.glint "File too large"
+  grep -q "^glint-render: stopped by SIGINT: out\.png holds" err.log || fail "no stop message"
+}
+case_checkpoint_directory_vanishes() {
+  mkdir gone
+  start_long_render "${with_exr[@]}" --checkpoint gone/ck.glint
+  rm -r gone
+  kill -s INT "$pid"
+  wait "$pid"
+  images_whole_without_checkpoint $? gone/ck.glint "No such file or directory"
+}
+
 # Outputs that cannot be written are refused before the render: no progress line appears.
 refused_before_render() { # STDERR_PATTERN ARGS...
   local pattern=$1
@@ -229,6 +282,27 @@ refused_before_render() { # STDERR_PATTERN ARGS...
   grep -Eq "$pattern" err.log || fail "stderr does not match '$pattern'"
   ! grep -q elapsed err.log || fail "the render started before the output was refused"
   no_temporaries
+}
+
+# A second output whose name the file system refuses (256 bytes, one more than NAME_MAX) is
+# refused before the render, and the first output's old file stays as it was, byte for byte;
+# so for --exr and --checkpoint.
+case_long_second_name() {
+  "$program" "$scene" -o short.png --spp 2 --quiet 2>err.log || fail "the first render failed"
+  cp short.png before.png
+  local long
+  long=$(printf '%0252d' 0)
+  refused_before_render \
+    "^glint-render: error: cannot write 0+\.pfm: the file name is 256 bytes long, more than the 255 its file system allows$" \
+    "$scene" -o short.png --hdr "$long.pfm"
+  refused_before_render "^glint-render: error: cannot write 0+\.glint: the file name is 258 bytes long" \
+    "$scene" -o short.png --hdr out.pfm --checkpoint "$long.glint"
+  if ! "$program" --exr x.exr 2>&1 | grep -q "without OpenEXR"; then
+    refused_before_render "^glint-render: error: cannot write 0+\.exr: the file name is 256 bytes long" \
+      "$scene" -o short.png --exr "$long.exr"
+  fi
+  cmp -s short.png before.png || fail "short.png was replaced"
+  [[ ! -e out.pfm ]] || fail "out.pfm was written"
 }
 
 case_hdr_is_directory() {
@@ -358,6 +432,45 @@ case_resume_refused() {
   refused_before_render "^glint-render: error: cannot resume from .*tiny\.scene: it is not a glint checkpoint" \
     "$scene" "${long_render[@]}" --resume "$scene"
   [[ ! -e out.png && ! -e out.pfm ]] || fail "an image was written"
+}
+
+# A run repeated with an existing --checkpoint and no --resume would replace a longer render
+# with a shorter one: refused before rendering, the checkpoint as it was. Resumed from it, the
+# same file is replaced.
+case_checkpoint_exists() {
+  "$program" "$scene" "${long_render[@]}" --time-limit 0 --checkpoint ck.glint --quiet 2>err.log ||
+    fail "making the checkpoint failed (status $?)"
+  cp ck.glint before.glint
+  rm out.png out.pfm
+  refused_before_render \
+    "^glint-render: error: cannot write the checkpoint ck\.glint: it exists, and may hold more of the render than this run will: continue it with --resume ck\.glint, or remove it to start again$" \
+    "$scene" "${long_render[@]}" --checkpoint ck.glint
+  cmp -s ck.glint before.glint || fail "the checkpoint was changed"
+  [[ ! -e out.png && ! -e out.pfm ]] || fail "an image was written"
+  "$program" "$scene" "${long_render[@]}" --time-limit 0 --resume ck.glint --checkpoint ck.glint \
+    --quiet 2>err.log || fail "resuming into the same file failed (status $?)"
+  ! cmp -s ck.glint before.glint || fail "the resumed render's checkpoint was not written"
+}
+
+# Temporaries a killed run left beside the targets (kill -9 while a checkpoint was written) are
+# removed at the start; files of other names, of other targets, and symbolic links stay.
+case_stale_temporaries() {
+  echo stale >ck.glint.0123456789ab.glint-partial
+  echo stale >out.png.abcdef012345.glint-partial
+  echo precious >victim
+  ln -s victim ck.glint.fedcba987654.glint-partial
+  echo keep >ck.glint.0123456789AB.glint-partial
+  echo keep >other.glint.0123456789ab.glint-partial
+  echo keep >ck.glint.012345.glint-partial
+  "$program" "$scene" -o out.png --spp 2 --checkpoint ck.glint --quiet 2>err.log ||
+    fail "exit status $?"
+  [[ ! -e ck.glint.0123456789ab.glint-partial && ! -e out.png.abcdef012345.glint-partial ]] ||
+    fail "a stale temporary was left"
+  [[ -L ck.glint.fedcba987654.glint-partial && $(cat victim) == precious ]] ||
+    fail "a symbolic link, or what it points to, was changed"
+  [[ -f ck.glint.0123456789AB.glint-partial && -f other.glint.0123456789ab.glint-partial &&
+    -f ck.glint.012345.glint-partial ]] || fail "a file that is no temporary of a target was removed"
+  complete_png out.png
 }
 
 # --time-limit 0: the first pass, then a complete image of 1 sample per pixel, status 0.

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "../unit/peak_memory.hpp"
 #include "exr_test_support.hpp"
 #include "glint/error.hpp"
 #include "glint/exr/exr_image.hpp"
@@ -311,4 +312,65 @@ TEST_CASE("EXR read: an attribute larger than the file is refused before any all
   CHECK(decode_error(bytes, "big.exr") ==
         "big.exr: damaged header: attribute 'comments' of 2147483647 bytes, more than the file "
         "holds");
+}
+
+TEST_CASE("EXR read: a header claiming more than the file holds costs a band, not the image",
+          "[exr][hostile]") {
+  const exr_test::ScratchDirectory scratch("read-claims");
+  // A 1x1 image, float (ZIP) and half (PIZ), whose data window is made 8192x8192 (within
+  // glint's limits: an 805 MB film): the file holds one pixel of the 67 million it claims.
+  for (const ExrPixelType type : {ExrPixelType::float32, ExrPixelType::float16}) {
+    std::vector<char> bytes = encode_exr(varied_film(1, 1), {type, {}}).bytes;
+    const std::string key("dataWindow\0box2i\0", 17);
+    const auto at = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
+    REQUIRE(at != bytes.end());
+    const std::size_t max_x = std::size_t(at - bytes.begin()) + key.size() + 4 + 8;
+    const std::int32_t side = 8191;
+    std::memcpy(&bytes[max_x], &side, 4);
+    std::memcpy(&bytes[max_x + 4], &side, 4);
+    // Room for the offset table of 8192 lines (OpenEXR refuses a file too short for it), but
+    // for none of the pixels.
+    bytes.resize(bytes.size() + 8192 * 8 + 4096);
+    const fs::path path = scratch.path() / "claims.exr";
+    write_bytes(path, bytes);
+    const glint_test::ChildRun run = glint_test::run_in_child_above_baseline([&] {
+      try {
+        read_exr(path);
+      } catch (const ImageReadError& error) {
+        return std::string(error.what())
+                           .rfind(path.string() + ": not a readable OpenEXR file", 0) == 0
+                   ? 0
+                   : 3;
+      }
+      return 4;
+    });
+    CHECK(run.status == 0);
+    CHECK(run.peak_kb < 64 * 1024);
+  }
+  // A real image much larger than its file (constant, so ZIP takes it to almost nothing) is
+  // read through the same check, whole.
+  Film flat(2048, 1024);
+  for (int y = 0; y < flat.height(); ++y)
+    flat.at(5, y) = Color(float(y), 0.5f, 2.0f);
+  const fs::path path = scratch.path() / "flat.exr";
+  write_exr(flat, path);
+  REQUIRE(fs::file_size(path) * 4 + (4u << 20) < 2048u * 1024u * 12u);
+  const ExrImage back = read_exr(path);
+  CHECK(same_bits(back.film, flat));
+}
+
+TEST_CASE("EXR read: devices that never end are refused from their first bytes", "[exr][hostile]") {
+  for (const char* device : {"/dev/zero", "/dev/urandom"}) {
+    CAPTURE(device);
+    const glint_test::ChildRun run = glint_test::run_in_child_above_baseline([&] {
+      try {
+        read_exr(device);
+      } catch (const ImageReadError& error) {
+        return std::string(error.what()) == std::string(device) + ": not an OpenEXR file" ? 0 : 3;
+      }
+      return 4;
+    });
+    CHECK(run.status == 0);
+    CHECK(run.peak_kb < 64 * 1024);
+  }
 }

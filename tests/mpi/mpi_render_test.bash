@@ -93,6 +93,32 @@ case_scene_error() {
     fail "not one message for the missing scene"
 }
 
+# Ranks started with different image options (mpirun's A : B form) would mix two renders into
+# one image: refused before rendering, with one message naming the difference, status 1. (The
+# default variant has the wavefront renderer, so --scalar is a difference.)
+case_different_settings() {
+  local args=("$lamp_room" "${small[@]}" --threads 1 -o out.png)
+  local other expected
+  for other in "--seed 4" "--max-depth 2" "--spp 12" "--scalar"; do
+    case $other in
+      --seed*) expected="this rank has seed 4, rank 0 has 3" ;;
+      --max-depth*) expected="this rank has max depth 2, rank 0 has 8" ;;
+      --spp*) expected="this rank has samples per pixel 12, rank 0 has 13" ;;
+      --scalar) expected="this rank renders with [a-z_]+, scalar, rank 0 with [a-z_]+, wavefront" ;;
+    esac
+    "$mpiexec" --oversubscribe --bind-to none -n 1 "$mpi_program" "${args[@]}" : \
+      -n 1 "$mpi_program" "${args[@]}" $other >out.log 2>err.log
+    local status=$?
+    ((status == 1)) || fail "$other: exit status $status, expected 1"
+    (($(grep -c "failed:" err.log) == 1)) || fail "$other: not one message"
+    grep -Eq "^glint-render-mpi: rank 1 \(on .*\) failed:$" err.log || fail "$other: rank 1 not named"
+    grep -Eq "^glint-render-mpi: error: $expected: every rank must be started with the same image options" err.log ||
+      fail "$other: the difference is not named"
+    ! grep -q elapsed err.log || fail "$other: the render started"
+    [[ ! -e out.png ]] || fail "$other: an image was written"
+  done
+}
+
 # A bad option: status 2, the message and the usage once.
 case_bad_option() {
   mpirun_n 2 "$mpi_program" "$lamp_room" --frobnicate 2>err.log

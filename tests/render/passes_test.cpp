@@ -249,6 +249,28 @@ TEST_CASE("a stop request ends the render after the current pass", "[passes]") {
   }
 }
 
+TEST_CASE("keep_sums returns the sums of the passes done, as the last pass reported them",
+          "[passes]") {
+  using V = glint::variants::report;
+  const glint::Scene scene = small_scene();
+  const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
+  std::vector<glint::ColorSum> reported;
+  glint::RenderControl control;
+  control.pass_done = [&](const glint::PassReport& r) {
+    reported = r.sums.pixels();
+    return r.passes_done < 3;  // stop after pass 3 of 5
+  };
+  control.keep_sums = true;
+  const glint::RenderResult kept =
+      glint_test::render_by<glint::Renderer<V>>(scene, settings, control);
+  REQUIRE(kept.passes_done == 3);
+  REQUIRE(kept.sums.pixels().size() == reported.size());
+  CHECK(std::memcmp(kept.sums.pixels().data(), reported.data(),
+                    reported.size() * sizeof(glint::ColorSum)) == 0);
+  control.keep_sums = false;
+  CHECK(glint_test::render_by<glint::Renderer<V>>(scene, settings, control).sums.pixels().empty());
+}
+
 TEST_CASE("a callback that throws ends the render and reaches the caller", "[passes]") {
   using V = glint::variants::report;
   const glint::Scene scene = small_scene();

@@ -2,17 +2,22 @@
 // truncated or foreign file is refused with a message naming the file and the problem, never
 // read past its end nor trusted for a size.
 
+#include <sys/stat.h>
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "glint/io/checkpoint.hpp"
+#include "peak_memory.hpp"
 
 namespace fs = std::filesystem;
 
@@ -39,7 +44,7 @@ glint::Checkpoint sample_checkpoint() {
   c.sums = glint::PixelSums(5, 3);
   double v = 0.25;
   for (int y = 0; y < 3; ++y)
-    for (int x = 0; x < 5; ++x, v *= -1.7)
+    for (int x = 0; x < 5; ++x, v *= 1.7)
       c.sums.at(x, y) =
           glint::ColorSum(v, -0.0, std::numeric_limits<double>::denorm_min() * double(x));
   return c;
@@ -132,6 +137,18 @@ TEST_CASE("a checkpoint whose sums are not finite is refused", "[checkpoint]") {
     CHECK_THAT(decode_error(glint::encode_checkpoint(c)),
                Catch::Contains("pixel (2, 1) holds a sum that is not finite"));
   }
+}
+
+TEST_CASE("a checkpoint whose sums are negative is refused", "[checkpoint]") {
+  // Forged with care: the content hash matches. A render's samples are never negative.
+  for (const double bad : {-1e-300, -0.25, -std::numeric_limits<double>::max()}) {
+    glint::Checkpoint c = sample_checkpoint();
+    c.sums.at(4, 2).z = bad;
+    CHECK_THAT(decode_error(glint::encode_checkpoint(c)),
+               Catch::EndsWith("pixel (4, 2) holds a negative sum, which no render makes"));
+  }
+  // -0.0 is zero: accepted (sample_checkpoint has it in every pixel).
+  CHECK(decode_error(glint::encode_checkpoint(sample_checkpoint())).empty());
 }
 
 TEST_CASE("a truncated checkpoint is refused at any length", "[checkpoint]") {
@@ -285,5 +302,98 @@ TEST_CASE("read_checkpoint reads a file, and refuses what is no checkpoint", "[c
   // A large file that is no checkpoint: refused from its first bytes.
   CHECK_THAT(refusal(write("other.ck", std::vector<char>(1 << 20, 'P'))),
              Catch::Contains("no GLINTCKP magic"));
+  // A negative sum, forged with its hash, read from a file as from memory.
+  glint::Checkpoint negative = sample_checkpoint();
+  negative.sums.at(1, 1).x = -2.0;
+  CHECK_THAT(refusal(write("negative.ck", glint::encode_checkpoint(negative))),
+             Catch::EndsWith("pixel (1, 1) holds a negative sum, which no render makes"));
+  // Devices that never end.
+  CHECK_THAT(refusal("/dev/zero"),
+             Catch::EndsWith("it is not a glint checkpoint (no GLINTCKP magic)"));
+  CHECK_THAT(refusal("/dev/urandom"), Catch::Contains("cannot resume from /dev/urandom: "));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("read_checkpoint reads in pieces, and checks a header's size before allocating",
+          "[checkpoint][hostile]") {
+  const fs::path dir = fs::path(GLINT_BINARY_DIR) / "unit-scratch" / "checkpoint-sizes";
+  // A reader that refuses early closes the pipe under its writer: EPIPE, not the signal.
+  std::signal(SIGPIPE, SIG_IGN);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto refusal = [](const fs::path& path) {
+    try {
+      glint::read_checkpoint(path);
+    } catch (const glint::CheckpointError& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  // A checkpoint of more pixels than one piece of the reader (2^14), and sums of every kind.
+  glint::RenderSettings settings;
+  settings.width = 300;
+  settings.height = 200;
+  settings.samples_per_pixel = 4;
+  glint::Checkpoint big;
+  big.key = glint::CheckpointKey::of(42, "report", settings);
+  big.passes_done = 1;
+  big.samples_per_pixel_done = 1;
+  big.sums = glint::PixelSums(300, 200);
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 300; ++x)
+      big.sums.at(x, y) = glint::ColorSum(x, y * 1e-3, 1e300 / (x + 1));
+  const std::vector<char> bytes = glint::encode_checkpoint(big);
+  const fs::path path = dir / "big.ck";
+  std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+  CHECK(same_bits(glint::read_checkpoint(path).sums, big.sums));
+  // The same bytes through a pipe.
+  const fs::path fifo = dir / "fifo.ck";
+  REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+  std::thread writer([&] {
+    std::ofstream(fifo, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+  });
+  CHECK(same_bits(glint::read_checkpoint(fifo).sums, big.sums));
+  writer.join();
+  // A negative sum in the last piece, a damaged byte in a middle one.
+  big.sums.at(299, 199).y = -1.0;
+  std::vector<char> forged = glint::encode_checkpoint(big);
+  std::ofstream(path, std::ios::binary).write(forged.data(), std::streamsize(forged.size()));
+  CHECK_THAT(refusal(path),
+             Catch::EndsWith("pixel (299, 199) holds a negative sum, which no render makes"));
+  forged[forged.size() / 2] ^= 1;
+  std::ofstream(path, std::ios::binary).write(forged.data(), std::streamsize(forged.size()));
+  CHECK_THAT(refusal(path), Catch::EndsWith("it is damaged (its content hash does not match)"));
+
+  // Headers claiming 32768x32768 (beyond glint's limits) and 8192x8192 (within them, 1.6 GB of
+  // sums) over a few bytes, from a file and from a pipe: refused before the sums are allocated.
+  struct Claim {
+    std::uint32_t width, height;
+    std::string message;
+  };
+  for (const Claim& size : {Claim{32768, 32768, "an image size of 32768x32768"},
+                            Claim{8192, 8192, "it is truncated"}}) {
+    const std::uint32_t width = size.width, height = size.height;
+    const std::string& message = size.message;
+    CAPTURE(width);
+    std::vector<char> claim = bytes;
+    put32(claim, kWidthAt, width);
+    put32(claim, kWidthAt + 4, height);
+    claim.resize(4096);
+    std::ofstream(path, std::ios::binary).write(claim.data(), std::streamsize(claim.size()));
+    const glint_test::ChildRun from_file = glint_test::run_in_child_above_baseline(
+        [&] { return refusal(path).find(message) != std::string::npos ? 0 : 3; });
+    CHECK(from_file.status == 0);
+    CHECK(from_file.peak_kb < 64 * 1024);
+    const glint_test::ChildRun from_pipe = glint_test::run_in_child_above_baseline([&] {
+      std::thread pipe_writer([&] {
+        std::ofstream(fifo, std::ios::binary).write(claim.data(), std::streamsize(claim.size()));
+      });
+      const bool refused = refusal(fifo).find(message) != std::string::npos;
+      pipe_writer.join();
+      return refused ? 0 : 3;
+    });
+    CHECK(from_pipe.status == 0);
+    CHECK(from_pipe.peak_kb < 64 * 1024);
+  }
   fs::remove_all(dir);
 }

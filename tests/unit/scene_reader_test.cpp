@@ -3,15 +3,23 @@
 
 #include "glint/io/scene_reader.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <string_view>
+#include <thread>
+
+#include "peak_memory.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
@@ -625,6 +633,35 @@ TEST_CASE("scene reader: files", "[scene_reader][file]") {
                       StartsWith(path.string() + ":3001: error: line contains a NUL byte"));
     CHECK_THROWS_WITH(glint::read_scene_file_text(path),
                       StartsWith(path.string() + ":3001: error: line contains a NUL byte"));
+  }
+  SECTION("text without line ends is refused once a line is too long, not after a GiB") {
+    // An endless stream of one character through a pipe, in a child: the reader must stop.
+    const fs::path fifo = dir / "endless.scene";
+    fs::remove(fifo);
+    REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+    const glint_test::ChildRun run = glint_test::run_in_child_above_baseline([&] {
+      std::signal(SIGPIPE, SIG_IGN);
+      std::thread writer([&] {
+        const int fd = ::open(fifo.c_str(), O_WRONLY);
+        const std::string line = "sphere center=0,0,0 radius=1\n", endless(1 << 16, 'y');
+        ssize_t written = ::write(fd, line.data(), line.size());
+        while (written > 0)
+          written = ::write(fd, endless.data(), endless.size());
+        ::close(fd);
+      });
+      std::string message;
+      try {
+        glint::read_scene_file_text(fifo);
+      } catch (const glint::SceneError& error) {
+        message = error.what();
+      }
+      writer.join();
+      return message.starts_with(fifo.string() + ":2: error: line is longer than 65536 characters")
+                 ? 0
+                 : 3;
+    });
+    CHECK(run.status == 0);
+    CHECK(run.peak_kb < 64 * 1024);
   }
   SECTION("/dev/zero is refused on its first line, not after a GiB") {
     if (fs::exists("/dev/zero"))

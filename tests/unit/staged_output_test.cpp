@@ -3,6 +3,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <climits>
+
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -149,5 +151,46 @@ TEST_CASE("check_output_path refuses what cannot be written, naming it", "[image
   CHECK(problem(dir.path() / "taken.png") ==
         "cannot write " + base + "/taken.png: it is a directory");
   CHECK(problem(dir.path() / "sub/") == "cannot write " + base + "/sub/: the name is a directory");
+  // A name one byte beyond NAME_MAX (255 on Linux's file systems), and a path beyond PATH_MAX.
+  const std::string long_name = std::string(252, 'n') + ".pfm";
+  CHECK(problem(dir.path() / long_name) ==
+        "cannot write " + base + "/" + long_name +
+            ": the file name is 256 bytes long, more than the 255 its file system allows");
+  CHECK(problem(dir.path() / (std::string(251, 'n') + ".pfm")).empty());
+  fs::path deep = dir.path();
+  while (deep.native().size() < PATH_MAX)
+    deep /= std::string(200, 'd');
+  CHECK_THAT(problem(deep / "out.png"), Catch::Contains("the path is "));
+  // The temporaries that showed the directory writable are gone.
   CHECK(dir.names() == std::vector<std::string>{"file", "taken.png"});
+}
+
+TEST_CASE("remove_stale_temporaries removes a target's own temporaries only", "[image][output]") {
+  Scratch dir("stale-temporaries");
+  const fs::path target = dir.path() / "out.png";
+  // Temporaries as StagedFile names them, one for a name so long that its prefix is cut.
+  const fs::path long_target = dir.path() / (std::string(250, 'x') + ".pfm");
+  const std::string long_temporary = std::string(228, 'x') + ".00000000abcd.glint-partial";
+  REQUIRE(long_temporary.size() == 255);
+  write_text(dir.path() / "out.png.0123456789ab.glint-partial", "stale");
+  write_text(dir.path() / long_temporary, "stale");
+  // Not temporaries of the target, or not files.
+  write_text(dir.path() / "out.png.0123456789AB.glint-partial", "keep");
+  write_text(dir.path() / "out.png.0123456789a.glint-partial", "keep");
+  write_text(dir.path() / "out.pn.0123456789ab.glint-partial", "keep");
+  write_text(dir.path() / "victim", "precious");
+  fs::create_symlink("victim", dir.path() / "out.png.fedcba987654.glint-partial");
+  fs::create_directory(dir.path() / "out.png.aaaaaaaaaaaa.glint-partial");
+  CHECK(glint::remove_stale_temporaries(target) == 1);
+  CHECK(glint::remove_stale_temporaries(long_target) == 1);
+  CHECK(glint::remove_stale_temporaries(target) == 0);
+  CHECK(read_text(dir.path() / "victim") == "precious");
+  CHECK(dir.names() == std::vector<std::string>{"out.pn.0123456789ab.glint-partial",
+                                                "out.png.0123456789AB.glint-partial",
+                                                "out.png.0123456789a.glint-partial",
+                                                "out.png.aaaaaaaaaaaa.glint-partial",
+                                                "out.png.fedcba987654.glint-partial", "victim"});
+  // What StagedFile itself makes is recognised.
+  const glint::StagedFile staged(long_target);
+  CHECK(glint::StagedFile::is_temporary_of(long_target, staged.temporary().filename().string()));
 }

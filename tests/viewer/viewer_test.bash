@@ -204,6 +204,15 @@ case_errors() {
   expect_refusal "a variant twice" \
     "twice.tsv:3: variant 'fast' of scene 'tiny' is already at twice.tsv:2" twice.tsv
   expect_refusal "no manifest" "cannot read the manifest nowhere.tsv" nowhere.tsv
+  # Images that would take all the memory or never end: refused from their first bytes (the
+  # readers' memory is measured in tests/unit/image_reader_test.cpp).
+  printf 'PF\n8192 8192\n-1.0\n' >claims.pfm
+  write_manifest claims.tsv "reference|tiny|claims.pfm"
+  expect_refusal "a header claiming more than the file" \
+    "claims.tsv:1: .*claims.pfm: truncated PFM file: its header claims 8192x8192 pixels" \
+    claims.tsv
+  write_manifest zero.tsv "reference|tiny|/dev/zero"
+  expect_refusal "/dev/zero" "zero.tsv:1: /dev/zero: not a colour PFM file" zero.tsv
 
   # A failed run leaves an earlier page as it was.
   cp -r page before

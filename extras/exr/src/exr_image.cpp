@@ -22,8 +22,6 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
-#include <fstream>
-#include <iterator>
 #include <optional>
 #include <string_view>
 #include <type_traits>
@@ -31,6 +29,7 @@
 
 #include "glint/error.hpp"
 #include "glint/io/image_writer.hpp"
+#include "glint/io/input_file.hpp"
 #include "glint/scene/image_settings.hpp"
 
 namespace glint {
@@ -274,6 +273,33 @@ std::string header_problem(const char* data, std::size_t size) {
   return "";
 }
 
+/// Above this many times the file's size (plus a band), an image's pixels are read once before
+/// its film is allocated: an uncompressed float image is as large as its film, a half one half
+/// as large; lossless compression of rendered images takes a few percent.
+constexpr std::uint64_t kExrDirectRatio = 4;
+/// The bytes of film a band of check_pixels holds.
+constexpr std::uint64_t kExrBandBytes = std::uint64_t{4} << 20;
+
+/// Decodes every pixel of `window` in bands of about kExrBandBytes, keeping none: throws
+/// OpenEXR's exception where the file lacks or damages some of them.
+void check_pixels(Imf::InputFile& file, const Imath::Box2i& window) {
+  const int width = window.max.x - window.min.x + 1;
+  const int rows = int(std::max<std::uint64_t>(1, kExrBandBytes / (sizeof(Color) * width)));
+  std::vector<Color> band(std::size_t(width) * std::size_t(rows));
+  for (int y = window.min.y; y <= window.max.y; y += rows) {
+    const int last = std::min(window.max.y, y + rows - 1);
+    const Imath::Box2i lines(Imath::V2i(window.min.x, y), Imath::V2i(window.max.x, last));
+    char* base = reinterpret_cast<char*>(band.data());
+    Imf::FrameBuffer frame;
+    const char* names[] = {"R", "G", "B"};
+    for (std::size_t i = 0; i < 3; ++i)
+      frame.insert(names[i], Imf::Slice::Make(Imf::FLOAT, base + i * sizeof(float), lines,
+                                              sizeof(Color), sizeof(Color) * std::size_t(width)));
+    file.setFrameBuffer(frame);
+    file.readPixels(y, last);
+  }
+}
+
 }  // namespace
 
 ExrEncoded encode_exr(const Film& film, const ExrWriteOptions& options) {
@@ -375,7 +401,14 @@ ExrImage decode_exr(const char* data, std::size_t size, const std::string& name)
     }
     image.pixel_type = halves == 3 ? ExrPixelType::float16 : ExrPixelType::float32;
 
-    image.film = Film(width, window.max.y - window.min.y + 1);
+    const int height = window.max.y - window.min.y + 1;
+    // An image much larger than the file (a short file whose header claims a large image, or
+    // one that compresses very well) is decoded once, in bands, before its film is allocated:
+    // a header that lies then costs a band, not the image it claims.
+    if (std::uint64_t(width) * std::uint64_t(height) * sizeof(Color) >
+        kExrDirectRatio * std::uint64_t(size) + kExrBandBytes)
+      check_pixels(file, window);
+    image.film = Film(width, height);
     char* base = reinterpret_cast<char*>(&image.film.at(0, 0));
     Imf::FrameBuffer frame;
     const char* names[] = {"R", "G", "B"};
@@ -409,21 +442,25 @@ ExrImage decode_exr(const char* data, std::size_t size, const std::string& name)
 }
 
 ExrImage read_exr(const std::filesystem::path& path) {
-  const auto fail = [&](const std::string& why) -> void {
-    throw ImageReadError("cannot read " + path.string() + ": " + why);
-  };
-  std::error_code ignored;
-  if (std::filesystem::is_directory(path, ignored)) fail("it is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(std::strerror(errno));
-  std::vector<char> bytes;
-  try {
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  } catch (const std::exception& error) {  // a read error (libstdc++ throws from underflow)
-    fail(error.what());
+  const std::string name = path.string();
+  InputFile file(path, [&](const std::string& why) {
+    throw ImageReadError("cannot read " + name + ": " + why);
+  });
+  // The magic number first: a file of another kind, or a device such as /dev/zero, is refused
+  // before the rest is read.
+  std::vector<char> bytes(4);
+  if (file.read(bytes.data(), bytes.size()) < bytes.size() || !Imf::isImfMagic(bytes.data()))
+    throw ImageReadError(name + ": not an OpenEXR file");
+  const std::string limit = std::to_string(kMaxExrFileSize >> 20) + " MiB";
+  if (const std::optional<std::uint64_t> left = file.remaining()) {
+    if (*file.size() > kMaxExrFileSize)
+      file.fail("it has " + std::to_string(*file.size()) + " bytes, more than glint reads (" +
+                limit + ")");
+    if (!file.append(bytes, *left)) file.fail("it shrank while being read");
+  } else if (file.append(bytes, kMaxExrFileSize - bytes.size()) && !file.at_end()) {
+    file.fail("it holds more than glint reads (" + limit + "): is it an endless stream?");
   }
-  if (in.bad()) fail("read error");
-  return decode_exr(bytes.data(), bytes.size(), path.string());
+  return decode_exr(bytes.data(), bytes.size(), name);
 }
 
 }  // namespace glint

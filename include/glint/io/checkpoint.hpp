@@ -28,13 +28,14 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "glint/error.hpp"
 #include "glint/image/pixel_sums.hpp"
+#include "glint/io/input_file.hpp"
 #include "glint/render/render_settings.hpp"
 
 namespace glint {
@@ -145,11 +146,15 @@ struct Header {
 };
 
 /// Parses the header from `bytes` (the file's first bytes, perhaps all of it) of a file of
-/// `file_size` bytes; throws CheckpointError with `fail`'s prefix.
+/// `file_size` bytes (empty for a pipe, whose size is not known beforehand); throws
+/// CheckpointError with `fail`'s prefix.
 template <typename Fail>
-Header parse_header(const char* bytes, std::size_t available, std::uint64_t file_size,
-                    const Fail& fail) {
-  if (available < kFixedHeader) fail("it is truncated (" + std::to_string(file_size) + " bytes)");
+Header parse_header(const char* bytes, std::size_t available,
+                    std::optional<std::uint64_t> file_size, const Fail& fail) {
+  const auto truncated = [&] {
+    fail("it is truncated (" + std::to_string(file_size.value_or(available)) + " bytes)");
+  };
+  if (available < kFixedHeader) truncated();
   if (std::memcmp(bytes, kCheckpointMagic, sizeof kCheckpointMagic) != 0)
     fail("it is not a glint checkpoint (no GLINTCKP magic)");
   Cursor in{bytes + sizeof kCheckpointMagic};
@@ -164,7 +169,7 @@ Header parse_header(const char* bytes, std::size_t available, std::uint64_t file
   if (name_size > kMaxVariantName)
     fail("a variant name of " + std::to_string(name_size) + " bytes");
   header.size = kFixedHeader + name_size + kSettingsAndPasses;
-  if (available < header.size) fail("it is truncated (" + std::to_string(file_size) + " bytes)");
+  if (available < header.size) truncated();
   key.variant.assign(in.at, name_size);
   in.at += name_size;
   const std::uint32_t width = in.u32(), height = in.u32(), spp = in.u32(), depth = in.u32(),
@@ -194,11 +199,44 @@ Header parse_header(const char* bytes, std::size_t available, std::uint64_t file
   header.meta.passes_done = int(passes);
   header.meta.samples_per_pixel_done = int(spp_done);
   header.file_size = header.size + std::uint64_t(width) * height * kBytesPerPixel + 8;
-  if (file_size != header.file_size)
-    fail((file_size < header.file_size ? "it is truncated (" : "it is too long (") +
-         std::to_string(file_size) + " bytes, the header promises " +
+  if (file_size && *file_size != header.file_size)
+    fail((*file_size < header.file_size ? "it is truncated (" : "it is too long (") +
+         std::to_string(*file_size) + " bytes, the header promises " +
          std::to_string(header.file_size) + ")");
   return header;
+}
+
+/// Decodes `pixels` sums, from the pixel `first` on (row-major), from `bytes`. Returns the
+/// index of the first pixel that no render can have made, or `bad` unchanged if all are sound.
+inline std::size_t decode_sums(const char* bytes, std::size_t pixels, std::size_t first,
+                               PixelSums& sums, std::size_t bad) {
+  Cursor in{bytes};
+  const std::size_t width = std::size_t(sums.width());
+  for (std::size_t i = first; i < first + pixels; ++i) {
+    ColorSum& pixel = sums.at(int(i % width), int(i / width));
+    pixel.x = std::bit_cast<double>(in.u64());
+    pixel.y = std::bit_cast<double>(in.u64());
+    pixel.z = std::bit_cast<double>(in.u64());
+    // A render's samples are finite radiance, never negative (-0.0 is zero, and passes).
+    if (!(pixel.x >= 0.0 && pixel.y >= 0.0 && pixel.z >= 0.0 && std::isfinite(pixel.x) &&
+          std::isfinite(pixel.y) && std::isfinite(pixel.z)) &&
+        i < bad)
+      bad = i;
+  }
+  return bad;
+}
+
+/// Refuses the sums if decode_sums found a pixel `bad` that no render makes, naming it.
+template <typename Fail>
+void check_sums(const PixelSums& sums, std::size_t bad, const Fail& fail) {
+  const std::size_t width = std::size_t(sums.width());
+  if (bad >= sums.pixels().size()) return;
+  const int x = int(bad % width), y = int(bad / width);
+  const ColorSum& pixel = sums.at(x, y);
+  const std::string where = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+  if (!(std::isfinite(pixel.x) && std::isfinite(pixel.y) && std::isfinite(pixel.z)))
+    fail(where + " holds a sum that is not finite");
+  fail(where + " holds a negative sum, which no render makes");
 }
 
 inline auto failer(const std::string& name) {
@@ -209,30 +247,60 @@ inline auto failer(const std::string& name) {
 
 }  // namespace detail::checkpoint
 
+/// Encodes the checkpoint of a render with `key` after `passes_done` passes, when its pixels
+/// hold the sums `sums` of `samples_per_pixel_done` samples each, handing its bytes to
+/// `put(const char* data, std::size_t size)` in order, in pieces of at most some hundred
+/// kilobytes: a checkpoint written this way is never held whole in memory.
+template <typename Put>
+void encode_checkpoint_pieces(const CheckpointKey& key, int passes_done, int samples_per_pixel_done,
+                              const PixelSums& sums, Put&& put) {
+  using namespace detail::checkpoint;
+  std::vector<char> piece(kFixedHeader + key.variant.size() + kSettingsAndPasses);
+  Writer out{piece.data()};
+  out.bytes(kCheckpointMagic, sizeof kCheckpointMagic);
+  out.u32(kCheckpointVersion);
+  out.u64(key.scene_hash);
+  out.u32(std::uint32_t(key.variant.size()));
+  out.bytes(key.variant.data(), key.variant.size());
+  for (const int v :
+       {key.width, key.height, key.samples_per_pixel, key.max_depth, key.max_pass_samples})
+    out.u32(std::uint32_t(v));
+  out.u64(key.seed);
+  out.u32(std::bit_cast<std::uint32_t>(key.antialias_sigma));
+  out.u32(std::uint32_t(passes_done));
+  out.u32(std::uint32_t(samples_per_pixel_done));
+  std::uint64_t hash = fnv1a(piece.data(), piece.size());
+  put(static_cast<const char*>(piece.data()), piece.size());
+
+  constexpr std::size_t kPiecePixels = std::size_t{1} << 14;
+  const std::vector<ColorSum>& pixels = sums.pixels();
+  for (std::size_t first = 0; first < pixels.size(); first += kPiecePixels) {
+    const std::size_t count = std::min(kPiecePixels, pixels.size() - first);
+    piece.resize(count * kBytesPerPixel);
+    out.at = piece.data();
+    for (std::size_t i = first; i < first + count; ++i)
+      for (const double v : {pixels[i].x, pixels[i].y, pixels[i].z})
+        out.u64(std::bit_cast<std::uint64_t>(v));
+    hash = fnv1a(piece.data(), piece.size(), hash);
+    put(static_cast<const char*>(piece.data()), piece.size());
+  }
+  piece.resize(8);
+  out.at = piece.data();
+  out.u64(hash);
+  put(static_cast<const char*>(piece.data()), piece.size());
+}
+
 /// The bytes of the checkpoint of a render with `key` after `passes_done` passes, when its
 /// pixels hold the sums `sums` of `samples_per_pixel_done` samples each.
 inline std::vector<char> encode_checkpoint(const CheckpointKey& key, int passes_done,
                                            int samples_per_pixel_done, const PixelSums& sums) {
-  using namespace detail::checkpoint;
-  std::vector<char> out(kFixedHeader + key.variant.size() + kSettingsAndPasses +
-                        sums.pixels().size() * kBytesPerPixel + 8);
-  Writer put{out.data()};
-  put.bytes(kCheckpointMagic, sizeof kCheckpointMagic);
-  put.u32(kCheckpointVersion);
-  put.u64(key.scene_hash);
-  put.u32(std::uint32_t(key.variant.size()));
-  put.bytes(key.variant.data(), key.variant.size());
-  for (const int v :
-       {key.width, key.height, key.samples_per_pixel, key.max_depth, key.max_pass_samples})
-    put.u32(std::uint32_t(v));
-  put.u64(key.seed);
-  put.u32(std::bit_cast<std::uint32_t>(key.antialias_sigma));
-  put.u32(std::uint32_t(passes_done));
-  put.u32(std::uint32_t(samples_per_pixel_done));
-  for (const ColorSum& pixel : sums.pixels())
-    for (const double v : {pixel.x, pixel.y, pixel.z})
-      put.u64(std::bit_cast<std::uint64_t>(v));
-  put.u64(fnv1a(out.data(), out.size() - 8));
+  std::vector<char> out;
+  out.reserve(detail::checkpoint::kFixedHeader + key.variant.size() +
+              detail::checkpoint::kSettingsAndPasses +
+              sums.pixels().size() * detail::checkpoint::kBytesPerPixel + 8);
+  encode_checkpoint_pieces(
+      key, passes_done, samples_per_pixel_done, sums,
+      [&](const char* data, std::size_t size) { out.insert(out.end(), data, data + size); });
   return out;
 }
 
@@ -251,48 +319,60 @@ inline Checkpoint decode_checkpoint(const std::vector<char>& bytes, const std::s
   if (in.u64() != fnv1a(bytes.data(), bytes.size() - 8))
     fail("it is damaged (its content hash does not match)");
   c.sums = PixelSums(c.key.width, c.key.height);
-  in.at = bytes.data() + header.size;
-  for (int y = 0; y < c.key.height; ++y)
-    for (int x = 0; x < c.key.width; ++x) {
-      ColorSum& pixel = c.sums.at(x, y);
-      pixel.x = std::bit_cast<double>(in.u64());
-      pixel.y = std::bit_cast<double>(in.u64());
-      pixel.z = std::bit_cast<double>(in.u64());
-      // A render's sums of finite samples are finite.
-      if (!(std::isfinite(pixel.x) && std::isfinite(pixel.y) && std::isfinite(pixel.z)))
-        fail("pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-             ") holds a sum that is not finite");
-    }
+  const std::size_t pixels = c.sums.pixels().size();
+  check_sums(c.sums, decode_sums(bytes.data() + header.size, pixels, 0, c.sums, pixels), fail);
   return c;
 }
 
-/// Reads and checks the checkpoint file `path`. The header is read and checked against the
-/// file's size first, so a damaged or foreign file costs at most what it holds, and never
-/// more than a checkpoint of glint's largest image. Throws CheckpointError.
+/// Reads and checks the checkpoint file `path`. Its header is read first and checked against
+/// glint's limits and the file's size, so that a damaged or foreign file costs at most what it
+/// holds; the sums are then read in pieces straight into the checkpoint, never held twice. A
+/// pipe or a device, whose size is known only at its end, is read as far as its data arrives
+/// and no further than its header promises. Throws CheckpointError.
 inline Checkpoint read_checkpoint(const std::filesystem::path& path) {
   using namespace detail::checkpoint;
   const std::string name = path.string();
   const auto fail = failer(name);
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) fail("it is a directory");
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(name.c_str(), "rb"),
-                                                             &std::fclose);
-  if (!file) fail(std::strerror(errno));
-  if (std::fseek(file.get(), 0, SEEK_END) != 0) fail("it cannot be read to its end");
-  const long size = std::ftell(file.get());
-  if (size < 0) fail("it cannot be read to its end");
-  std::rewind(file.get());
+  InputFile file(path, fail);
   // The largest header: the fixed fields and the longest variant name.
-  std::vector<char> bytes(std::min<std::size_t>(
-      std::size_t(size), kFixedHeader + kMaxVariantName + kSettingsAndPasses));
-  if (std::fread(bytes.data(), 1, bytes.size(), file.get()) != bytes.size())
-    fail("it could not be read");
-  parse_header(bytes.data(), bytes.size(), std::uint64_t(size), fail);  // sizes checked here
-  const std::size_t start = bytes.size();
-  bytes.resize(std::size_t(size));
-  if (std::fread(bytes.data() + start, 1, bytes.size() - start, file.get()) != bytes.size() - start)
-    fail("it could not be read");
-  return decode_checkpoint(bytes, name);
+  std::vector<char> piece(kFixedHeader + kMaxVariantName + kSettingsAndPasses);
+  piece.resize(file.read(piece.data(), piece.size()));
+  Header header = parse_header(piece.data(), piece.size(), file.size(), fail);
+  if (!file.size()) {
+    if (piece.size() > header.file_size)
+      fail("it is too long (the header promises " + std::to_string(header.file_size) + " bytes)");
+    if (!file.append(piece, header.file_size - piece.size()))
+      fail("it is truncated (" + std::to_string(piece.size()) + " bytes, the header promises " +
+           std::to_string(header.file_size) + ")");
+    if (!file.at_end())
+      fail("it is too long (the header promises " + std::to_string(header.file_size) + " bytes)");
+    return decode_checkpoint(piece, name);
+  }
+
+  Checkpoint c = std::move(header.meta);
+  c.sums = PixelSums(c.key.width, c.key.height);
+  std::uint64_t hash = fnv1a(piece.data(), header.size);
+  piece.erase(piece.begin(), piece.begin() + std::ptrdiff_t(header.size));
+  const std::size_t pixels = c.sums.pixels().size();
+  std::size_t done = 0, bad = pixels;
+  constexpr std::size_t kPiecePixels = std::size_t{1} << 14;
+  while (done < pixels) {
+    // Whole pixels, and the content hash with the last ones.
+    const std::size_t count = std::min(kPiecePixels, pixels - done);
+    const std::size_t want = count * kBytesPerPixel + (done + count == pixels ? 8 : 0);
+    if (const std::size_t have = piece.size(); have < want) {
+      piece.resize(want);
+      if (file.read(piece.data() + have, want - have) != want - have)
+        fail("it shrank while being read");
+    }
+    hash = fnv1a(piece.data(), count * kBytesPerPixel, hash);
+    bad = decode_sums(piece.data(), count, done, c.sums, bad);
+    done += count;
+    piece.erase(piece.begin(), piece.begin() + std::ptrdiff_t(count * kBytesPerPixel));
+  }
+  if (Cursor{piece.data()}.u64() != hash) fail("it is damaged (its content hash does not match)");
+  check_sums(c.sums, bad, fail);
+  return c;
 }
 
 /// Throws CheckpointError, naming the file and the first difference, unless the checkpoint

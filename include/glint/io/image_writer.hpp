@@ -11,6 +11,7 @@
 #include <fcntl.h>
 #include <stb_image_write.h>
 #include <unistd.h>
+#include <climits>
 
 #include <algorithm>
 #include <cerrno>
@@ -21,6 +22,7 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -40,31 +42,31 @@ inline std::uint8_t linear_to_srgb8(float linear) {
   return static_cast<std::uint8_t>(std::lround(encoded * 255.0f));
 }
 
-/// Throws ImageWriteError unless `target` looks writable: its directory exists and lets this
-/// process create files, and the target is not a directory. A program calls it before long
-/// work, so that a mistyped output fails at once instead of after the render; the write itself
-/// still checks everything again.
-inline void check_output_path(const std::filesystem::path& target) {
-  namespace fs = std::filesystem;
-  const auto fail = [&](const std::string& why) {
-    throw ImageWriteError("cannot write " + target.string() + ": " + why);
-  };
-  if (target.filename().empty()) fail("the name is a directory");
-  const fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  std::error_code error;
-  const fs::file_status status = fs::status(directory, error);
-  if (!fs::exists(status)) fail("directory " + directory.string() + " does not exist");
-  if (!fs::is_directory(status)) fail(directory.string() + " is not a directory");
-  // AT_EACCESS: the permissions of the effective user, who will create the file.
-  if (faccessat(AT_FDCWD, directory.c_str(), W_OK | X_OK, AT_EACCESS) != 0)
-    fail("directory " + directory.string() + " is not writable (" + std::strerror(errno) + ")");
-  if (fs::is_directory(fs::symlink_status(target, error))) fail("it is a directory");
-}
-
 /// A file written under a temporary name beside `target`, then renamed over it by commit().
 /// Until then the target is untouched, and the destructor removes the temporary.
 class StagedFile {
  public:
+  /// How a temporary's name ends, after TARGET and a dot and 12 random hex digits.
+  static constexpr const char* kTemporaryEnd = ".glint-partial";
+  static constexpr std::size_t kTemporarySuffixSize = 1 + 12 + 14;
+
+  /// The part of a temporary's name that comes from `target`: its file name, shortened so that
+  /// the whole name fits in 255 bytes (the random part is never shortened).
+  static std::string temporary_prefix(const std::filesystem::path& target) {
+    return target.filename().string().substr(0, 255 - kTemporarySuffixSize);
+  }
+
+  /// True when `name` (a file name) is that of a temporary of `target`.
+  static bool is_temporary_of(const std::filesystem::path& target, std::string_view name) {
+    const std::string prefix = temporary_prefix(target);
+    if (name.size() != prefix.size() + kTemporarySuffixSize || !name.starts_with(prefix) ||
+        !name.ends_with(kTemporaryEnd) || name[prefix.size()] != '.')
+      return false;
+    for (const char c : name.substr(prefix.size() + 1, 12))
+      if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return false;
+    return true;
+  }
+
   /// Creates the temporary, TARGET.XXXXXXXXXXXX.glint-partial with random hex digits, as a
   /// new file (mode 0666 less the umask, as any new file). Throws ImageWriteError.
   explicit StagedFile(std::filesystem::path target) : target_(std::move(target)) {
@@ -92,19 +94,30 @@ class StagedFile {
   const std::filesystem::path& target() const { return target_; }
   const std::filesystem::path& temporary() const { return temporary_; }
 
-  /// Writes the whole content, flushes it to the disk (so that a crash after the rename
-  /// cannot leave an empty image) and closes the file. On failure removes the temporary and
-  /// throws ImageWriteError.
+  /// Writes the whole content and finishes the file (finish()). On failure removes the
+  /// temporary and throws ImageWriteError.
   void write(const std::vector<char>& bytes) {
-    const char* data = bytes.data();
-    std::size_t left = bytes.size();
-    while (left > 0) {
-      const ssize_t written = ::write(fd_, data, std::min<std::size_t>(left, 1 << 30));
+    append(bytes.data(), bytes.size());
+    finish();
+  }
+
+  /// Writes the next `size` bytes of the content: a large file written piece by piece is never
+  /// held whole in memory. On failure removes the temporary and throws ImageWriteError.
+  void append(const char* data, std::size_t size) {
+    if (state_ != State::open) fail("the file is no longer open");
+    while (size > 0) {
+      const ssize_t written = ::write(fd_, data, std::min<std::size_t>(size, 1 << 30));
       if (written < 0 && errno == EINTR) continue;
       if (written <= 0) discard_and_fail(written < 0 ? std::strerror(errno) : "write failed");
       data += written;
-      left -= std::size_t(written);
+      size -= std::size_t(written);
     }
+  }
+
+  /// Flushes the content to the disk (so that a crash after the rename cannot leave an empty
+  /// file) and closes it. On failure removes the temporary and throws ImageWriteError.
+  void finish() {
+    if (state_ != State::open) fail("the file is no longer open");
     if (::fsync(fd_) != 0) discard_and_fail(std::strerror(errno));
     const int closed = ::close(std::exchange(fd_, -1));
     if (closed != 0) discard_and_fail(std::strerror(errno));
@@ -125,11 +138,9 @@ class StagedFile {
   static std::filesystem::path temporary_name(const std::filesystem::path& target,
                                               std::uint64_t random) {
     char suffix[40];
-    std::snprintf(suffix, sizeof suffix, ".%012llx.glint-partial",
-                  static_cast<unsigned long long>(random & 0xffffffffffffULL));
-    // A name must fit in 255 bytes: shorten the target's part, not the random one.
-    std::string name = target.filename().string().substr(0, 255 - std::strlen(suffix));
-    return target.parent_path() / (name + suffix);
+    std::snprintf(suffix, sizeof suffix, ".%012llx%s",
+                  static_cast<unsigned long long>(random & 0xffffffffffffULL), kTemporaryEnd);
+    return target.parent_path() / (temporary_prefix(target) + suffix);
   }
 
   [[noreturn]] void fail(const std::string& why) const {
@@ -147,6 +158,62 @@ class StagedFile {
   int fd_ = -1;
   State state_ = State::open;
 };
+
+/// Removes the temporaries of `target` that a StagedFile made and never renamed or removed:
+/// what a process killed outright (SIGKILL, a crash, a power cut) while writing left behind.
+/// Only regular files named as StagedFile names them (TARGET.<12 hex digits>.glint-partial) go;
+/// a symbolic link or a directory of that name stays, and no link is followed. Returns how many
+/// were removed. A program calls it for its outputs before it writes them; a temporary of another
+/// process writing the same target at that moment would go too, and that write then fails
+/// (never writing a wrong file).
+inline int remove_stale_temporaries(const std::filesystem::path& target) {
+  namespace fs = std::filesystem;
+  const fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code error;
+  int removed = 0;
+  for (fs::directory_iterator it(directory, error), end; !error && it != end; it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    std::error_code ignored;
+    // unlink removes a link itself, never what it points to; only regular files are removed.
+    if (StagedFile::is_temporary_of(target, name) && it->is_regular_file(ignored) &&
+        !it->is_symlink(ignored) && ::unlink(it->path().c_str()) == 0)
+      ++removed;
+  }
+  return removed;
+}
+
+/// Throws ImageWriteError unless `target` can be written: its name fits the file system (a
+/// file name of at most NAME_MAX bytes, a path shorter than PATH_MAX), its directory exists and
+/// lets this process create files there (shown by creating and removing a temporary beside the
+/// target, as the write will: permissions alone do not bind root, nor say that a file system is
+/// read-only or full of inodes), and the target is not a directory. A program calls it for every
+/// output before long work, so that a mistyped output fails at once instead of after the render,
+/// and before any other output was replaced; the write itself still checks everything again.
+inline void check_output_path(const std::filesystem::path& target) {
+  namespace fs = std::filesystem;
+  const auto fail = [&](const std::string& why) {
+    throw ImageWriteError("cannot write " + target.string() + ": " + why);
+  };
+  if (target.filename().empty()) fail("the name is a directory");
+  if (target.native().size() >= PATH_MAX)
+    fail("the path is " + std::to_string(target.native().size()) + " bytes long, more than " +
+         std::to_string(PATH_MAX - 1));
+  const fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code error;
+  const fs::file_status status = fs::status(directory, error);
+  if (!fs::exists(status)) fail("directory " + directory.string() + " does not exist");
+  if (!fs::is_directory(status)) fail(directory.string() + " is not a directory");
+  const long name_max = ::pathconf(directory.c_str(), _PC_NAME_MAX);
+  const std::size_t name_size = target.filename().native().size();
+  if (name_max > 0 && name_size > std::size_t(name_max))
+    fail("the file name is " + std::to_string(name_size) + " bytes long, more than the " +
+         std::to_string(name_max) + " its file system allows");
+  // AT_EACCESS: the permissions of the effective user, who will create the file.
+  if (faccessat(AT_FDCWD, directory.c_str(), W_OK | X_OK, AT_EACCESS) != 0)
+    fail("directory " + directory.string() + " is not writable (" + std::strerror(errno) + ")");
+  if (fs::is_directory(fs::symlink_status(target, error))) fail("it is a directory");
+  const StagedFile probe(target);  // removed again by its destructor
+}
 
 /// A file's path and its whole content.
 struct FileContents {

@@ -535,12 +535,20 @@ inline std::string read_scene_file_text(const std::filesystem::path& path,
   if (!file) fail(detail::concat({"cannot open file: ", std::generic_category().message(errno)}));
   std::string text;
   std::uint64_t expected_size = 0;  // unknown for a pipe or a device
-  // Reserved from the size of a regular file, so that a big scene is copied only once.
-  if (const std::uintmax_t size = std::filesystem::file_size(path, ec);
-      !ec && size <= kMaxSceneFileSize) {
+  const auto too_large = [&] {
+    fail(detail::concat({"file is larger than ", std::to_string(kMaxSceneFileSize >> 20), " MiB"}));
+  };
+  // Reserved from the size of a regular file, so that a big scene is copied only once; one
+  // beyond the limit is refused before it is read.
+  if (const std::uintmax_t size = std::filesystem::file_size(path, ec); !ec) {
+    if (size > kMaxSceneFileSize) too_large();
     text.reserve(static_cast<std::size_t>(size));
     expected_size = size;
   }
+  // Text without line ends (binary data free of NUL bytes, an endless stream of one
+  // character) is refused once a line exceeds what the parser accepts, as the parser would.
+  std::size_t line_length = 0;
+  std::int64_t lines = 0;
   char buffer[1 << 16];
   for (std::size_t reads = 1;; ++reads) {
     if (progress && reads % 16 == 0)
@@ -550,16 +558,24 @@ inline std::string read_scene_file_text(const std::filesystem::path& path,
     // parser would name, rather than after reading up to the size limit.
     if (const void* nul = std::memchr(buffer, '\0', got)) {
       const auto in_buffer = static_cast<std::size_t>(static_cast<const char*>(nul) - buffer);
-      const auto lines_before =
-          std::count(text.begin(), text.end(), '\n') + std::count(buffer, buffer + in_buffer, '\n');
-      throw SceneError(source,
-                       static_cast<int>(std::min<std::ptrdiff_t>(lines_before + 1, INT_MAX)),
+      const std::int64_t lines_before = lines + std::count(buffer, buffer + in_buffer, '\n');
+      throw SceneError(source, static_cast<int>(std::min<std::int64_t>(lines_before + 1, INT_MAX)),
                        "line contains a NUL byte (is this a text file?)");
     }
+    for (const char *at = buffer, *end = buffer + got; at < end;) {
+      const auto* line_end = static_cast<const char*>(std::memchr(at, '\n', std::size_t(end - at)));
+      line_length += std::size_t((line_end ? line_end : end) - at);
+      if (line_length > kMaxSceneLineLength)
+        throw SceneError(source, static_cast<int>(std::min<std::int64_t>(lines + 1, INT_MAX)),
+                         detail::concat({"line is longer than ",
+                                         std::to_string(kMaxSceneLineLength), " characters"}));
+      if (!line_end) break;
+      line_length = 0;
+      ++lines;
+      at = line_end + 1;
+    }
     if (got > 0) {
-      if (text.size() + got > kMaxSceneFileSize)
-        fail(detail::concat(
-            {"file is larger than ", std::to_string(kMaxSceneFileSize >> 20), " MiB"}));
+      if (text.size() + got > kMaxSceneFileSize) too_large();
       text.append(buffer, got);
     }
     if (got < sizeof buffer) {

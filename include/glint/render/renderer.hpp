@@ -54,6 +54,9 @@ struct RenderResult {
   int samples_per_pixel = 0;  ///< samples in every pixel of `film`
   int passes_done = 0;
   int pass_count = 0;  ///< passes planned for the requested samples per pixel
+  /// The per-pixel sums of the completed passes' samples (what a checkpoint keeps), when
+  /// RenderControl::keep_sums asked for them; empty otherwise.
+  PixelSums sums;
   /// Whether every requested sample is in the image (no stop request cut the render short).
   bool complete() const { return passes_done == pass_count; }
 };
@@ -92,6 +95,9 @@ struct RenderControl {
   /// Checked before each pass, the first included: once true, the render returns the image of
   /// the passes completed so far. A lock-free atomic, so a signal handler may set it.
   const std::atomic<bool>* stop = nullptr;
+  /// Keep the sums in RenderResult::sums: a caller that saves them after the render (a
+  /// checkpoint) then needs no copy of its own, 24 bytes a pixel.
+  bool keep_sums = false;
 };
 
 /// Samples [first_sample, last_sample) of every pixel of tile `tile` (of TileGrid(settings)),
@@ -402,7 +408,7 @@ RenderResult Renderer<C, E>::render(const Scene& scene, const RenderSettings& se
 
   PixelSums sums = from.sums ? *from.sums : PixelSums(settings.width, settings.height);
   RenderResult result{
-      {}, {}, first_pass ? ends[first_pass - 1] : 0, int(first_pass), int(ends.size())};
+      {}, {}, first_pass ? ends[first_pass - 1] : 0, int(first_pass), int(ends.size()), {}};
   const E execution(scene, settings);
 
   const TileGrid grid(settings);
@@ -455,6 +461,7 @@ RenderResult Renderer<C, E>::render(const Scene& scene, const RenderSettings& se
   } else {
     result.film = Film(settings.width, settings.height);
   }
+  if (control.keep_sums) result.sums = std::move(sums);
   for (const PaddedCounters& c : counters) {
     result.stats.rays += c.counters.rays;
     result.stats.invalid_samples += c.counters.invalid_samples;

@@ -13,6 +13,7 @@
 // [0, width-1] x [0, height-1], row 0 at the top as in the Film.
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <variant>
@@ -99,7 +100,13 @@ struct ExrImage {
 /// data, an image too large.
 ExrImage decode_exr(const char* data, std::size_t size, const std::string& name);
 
-/// Reads the EXR file at `path`; throws ImageReadError naming it (see decode_exr).
+/// The largest EXR file read_exr reads: twice an uncompressed 32-bit RGBA image of glint's
+/// largest size. A pipe or a device is refused once it has delivered more.
+inline constexpr std::uint64_t kMaxExrFileSize = std::uint64_t{2} << 30;
+
+/// Reads the EXR file at `path`; throws ImageReadError naming it (see decode_exr). A file that
+/// does not begin with EXR's magic number is refused after its first four bytes, one larger
+/// than kMaxExrFileSize before it is read, and a pipe or device after kMaxExrFileSize bytes.
 ExrImage read_exr(const std::filesystem::path& path);
 
 }  // namespace glint
