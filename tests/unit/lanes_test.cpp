@@ -1,6 +1,6 @@
 // What AVX2 adds to the eight-lane width for the wavefront renderer (math/lanes.hpp): masks as
 // bits, transposes, the packing of lanes into queues, 64-bit lanes; and the lane-wise forms
-// that are not yet written once for every width (the camera's rays, the samplers), against
+// that are not yet written once for every width (the samplers), against
 // their scalar forms lane by lane. What is written once is checked in wide_test.cpp.
 
 #include <algorithm>
@@ -46,13 +46,6 @@ FloatLanes lanes_of(const float (&values)[kLaneCount]) {
 
 bool same_bits(float a, float b) {
   return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
-}
-
-void check_close(const Vec3& lane, const Vec3& scalar, float tolerance) {
-  for (int c = 0; c < 3; ++c) {
-    INFO("component " << c << ": lanes " << lane[c] << ", scalar " << scalar[c]);
-    CHECK(std::abs(lane[c] - scalar[c]) <= tolerance);
-  }
 }
 
 }  // namespace
@@ -139,33 +132,6 @@ TEST_CASE("Uint64Lanes gives each lane's low and high 32 bits", "[lanes][unit]")
       CHECK(high[i] == std::uint32_t(expected[i] >> 32));
     }
   }
-}
-
-TEST_CASE("Camera::rays_through agrees with ray_through", "[lanes][unit]") {
-  glint::CameraDescription description;
-  description.position = {1.0f, 2.0f, 30.0f};
-  description.look_at = {0.0f, -1.0f, 0.0f};
-  description.up = {0.0f, 1.0f, 0.0f};
-  description.fov_degrees = 50.0f;
-  description.near = 0.25f;
-  const glint::Camera camera(description, 320, 200);
-  glint::Pcg32 rng(5, 5);
-  for (int round = 0; round < 1024; ++round) {
-    Vec2Lanes film{};
-    for (int i = 0; i < kLaneCount; ++i) {
-      film.x[i] = rng.next_float() * 320.0f;
-      film.y[i] = rng.next_float() * 200.0f;
-    }
-    Vec3Lanes direction;
-    FloatLanes t_min;
-    camera.rays_through(film, direction, t_min);
-    for (int i = 0; i < kLaneCount; ++i) {
-      const glint::Ray ray = camera.ray_through({film.x[i], film.y[i]});
-      check_close(direction.lane(i), ray.direction, 1e-6f);
-      CHECK(t_min[i] == Approx(ray.t_min).epsilon(1e-6));
-    }
-  }
-  CHECK(camera.position() == description.position);
 }
 
 TEMPLATE_TEST_CASE("a sampler's Lanes form draws bit for bit what the sampler draws, lane by lane",

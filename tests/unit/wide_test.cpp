@@ -21,6 +21,7 @@
 #include "glint/policy/fresnel.hpp"
 #include "glint/policy/light_sampling.hpp"
 #include "glint/policy/path_termination.hpp"
+#include "glint/render/camera.hpp"
 
 namespace {
 
@@ -277,5 +278,26 @@ TEMPLATE_TEST_CASE("wide: path termination gives the same bits at every width", 
       calls.push_back({float(depth), throughput});
   check_same_bits_at_every_width(calls, [](auto depth, auto throughput) {
     return std::array{TestType::continue_probability(glint::truncate_to_int(depth), throughput)};
+  });
+}
+
+TEST_CASE("wide: camera rays give the same bits at every width", "[wide][unit]") {
+  glint::CameraDescription description;
+  description.position = {1.0f, 2.0f, 30.0f};
+  description.look_at = {0.0f, -1.0f, 0.0f};
+  description.up = {0.0f, 1.0f, 0.0f};
+  description.fov_degrees = 50.0f;
+  description.near = 0.25f;
+  const glint::Camera camera(description, 320, 200);
+  Calls<2> calls = {{0.0f, 0.0f}, {320.0f, 200.0f}, {160.0f, 100.0f}, {0.5f, 199.5f}};
+  glint::Pcg32 rng(5, 5);
+  while (calls.size() < 2048)
+    calls.push_back({rng.next_float() * 320.0f, rng.next_float() * 200.0f});
+  check_same_bits_at_every_width(calls, [&](auto x, auto y) {
+    using F = decltype(x);
+    glint::Vec3For<F> direction;
+    F t_min;
+    camera.rays_through(glint::Vec2For<F>{x, y}, direction, t_min);
+    return std::array{direction.x, direction.y, direction.z, t_min};
   });
 }

@@ -298,6 +298,15 @@ struct Vector3 {
   Vector3& operator*=(const Vector3& b) { return *this = *this * b; }
 };
 
+/// `v` in every lane of a Vec3 or Vector3 type V.
+template <typename V>
+inline V splat_vector(const Vec3& v) {
+  if constexpr (std::is_same_v<V, Vec3>)
+    return v;
+  else
+    return V::broadcast(v);
+}
+
 template <typename F>
 using Vec2For = std::conditional_t<kLanesOf<F> == 1, Vec2, Vector2<F>>;
 template <typename F>

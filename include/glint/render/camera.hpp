@@ -1,9 +1,8 @@
 #pragma once
 
-#include <cmath>
-
 #include "glint/geometry/ray.hpp"
-#include "glint/math/lanes.hpp"
+#include "glint/math/elementary_functions.hpp"
+#include "glint/math/wide.hpp"
 #include "glint/scene/scene_description.hpp"
 
 namespace glint {
@@ -18,37 +17,37 @@ class Camera {
     forward_ = glm::normalize(description.look_at - description.position);
     right_ = glm::normalize(glm::cross(forward_, description.up));
     up_ = glm::cross(right_, forward_);
-    const float tan_half = std::tan(0.5f * description.fov_degrees * kPi / 180.0f);
+    // glint's own sine and cosine, not the C library's tangent: every ray depends on it.
+    float sin_half, cos_half;
+    sincos(0.5f * description.fov_degrees * kPi / 180.0f, sin_half, cos_half);
+    const float tan_half = sin_half / cos_half;
     pixel_scale_ = 2.0f * tan_half / static_cast<float>(height);
     half_width_ = 0.5f * static_cast<float>(width);
     half_height_ = 0.5f * static_cast<float>(height);
   }
 
   Ray ray_through(Vec2 film) const {
-    const float sx = (film.x - half_width_) * pixel_scale_;
-    const float sy = (half_height_ - film.y) * pixel_scale_;
     Ray ray;
     ray.origin = position_;
-    ray.direction = glm::normalize(forward_ + sx * right_ + sy * up_);
-    // The clipping plane is perpendicular to the viewing direction, so the distance along a
-    // ray grows as 1/cos of its angle to it.
-    ray.t_min = near_ / glm::dot(ray.direction, forward_);
+    rays_through(film, ray.direction, ray.t_min);
     return ray;
   }
 
-#if defined(GLINT_AVX2)
-  /// ray_through for eight film points: the directions and t_min (the origin is position()).
-  void rays_through(const Vec2Lanes& film, Vec3Lanes& direction, FloatLanes& t_min) const {
-    const FloatLanes sx = (film.x - half_width_) * pixel_scale_;
-    const FloatLanes sy = (half_height_ - film.y) * pixel_scale_;
-    direction = normalize(Vec3Lanes::broadcast(forward_) + sx * Vec3Lanes::broadcast(right_) +
-                          sy * Vec3Lanes::broadcast(up_));
-    t_min = near_ / dot(direction, Vec3Lanes::broadcast(forward_));
+  /// ray_through for a Float's lanes of film points at once (V2 is Vec2 or a Vector2 of
+  /// lanes), the same bits in every lane: the directions and t_min (the origin is position()).
+  template <typename V2>
+  void rays_through(const V2& film, Vec3For<FloatOf<V2>>& direction, FloatOf<V2>& t_min) const {
+    using V3 = Vec3For<FloatOf<V2>>;
+    const FloatOf<V2> sx = (film.x - half_width_) * pixel_scale_;
+    const FloatOf<V2> sy = (half_height_ - film.y) * pixel_scale_;
+    const V3 forward = splat_vector<V3>(forward_);
+    direction = normalize(forward + sx * splat_vector<V3>(right_) + sy * splat_vector<V3>(up_));
+    // The clipping plane is perpendicular to the viewing direction, so the distance along a
+    // ray grows as 1/cos of its angle to it.
+    t_min = near_ / dot(direction, forward);
   }
-#endif
-  const Vec3& position() const {
-    return position_;
-  }
+
+  const Vec3& position() const { return position_; }
 
  private:
   Vec3 position_;
