@@ -22,6 +22,7 @@
 #include "glint/policy/light_sampling.hpp"
 #include "glint/policy/path_termination.hpp"
 #include "glint/render/camera.hpp"
+#include "glint/scene/emitters.hpp"
 
 namespace {
 
@@ -300,4 +301,35 @@ TEST_CASE("wide: camera rays give the same bits at every width", "[wide][unit]")
     camera.rays_through(glint::Vec2For<F>{x, y}, direction, t_min);
     return std::array{direction.x, direction.y, direction.z, t_min};
   });
+}
+
+TEST_CASE(
+    "wide: emitter sampling gives the same bits at every width, from outside, inside and "
+    "on the surface",
+    "[wide][unit]") {
+  // Arguments: the point (three), the radius, the view (0 outside, 1 inside, 2 none) and u;
+  // the emitter's centre is (1, -2, 3), the points inside it where the view says so.
+  Calls<7> calls;
+  glint::Pcg32 rng(8, 9);
+  for (int k = 0; k < 3072; ++k) {
+    const float radius = k % 5 == 0 ? 1e-3f : 0.5f + 4.0f * rng.next_float();
+    const float distance = k % 3 == 0 ? radius * 0.5f : radius * (1.0f + 100.0f * rng.next_float());
+    const glint::Vec3 direction =
+        glint::sample_uniform_sphere(glint::Vec2(rng.next_float(), rng.next_float()));
+    const float view = k % 3 == 0 ? 1.0f : (k % 17 == 0 ? 2.0f : 0.0f);
+    calls.push_back({1.0f + direction.x * distance, -2.0f + direction.y * distance,
+                     3.0f + direction.z * distance, radius, view, rng.next_float(),
+                     rng.next_float()});
+  }
+  check_same_bits_at_every_width(
+      calls, [](auto x, auto y, auto z, auto radius, auto view, auto u, auto v) {
+        using F = decltype(x);
+        using V3 = glint::Vec3For<F>;
+        const auto sample = glint::sample_sphere_emitter(
+            glint::splat_vector<V3>(glint::Vec3(1.0f, -2.0f, 3.0f)), radius, V3{x, y, z},
+            view == 0.0f, view == 2.0f, glint::Vec2For<F>{u, v});
+        const F valid = glint::select(sample.valid, glint::splat<F>(1.0f), glint::splat<F>(0.0f));
+        return std::array{sample.direction.x, sample.direction.y, sample.direction.z, sample.pdf,
+                          valid};
+      });
 }

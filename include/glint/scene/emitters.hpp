@@ -18,6 +18,7 @@
 #include "glint/math/lanes.hpp"
 #include "glint/math/sampling.hpp"
 #include "glint/math/vector.hpp"
+#include "glint/math/wide.hpp"
 
 namespace glint {
 
@@ -33,6 +34,62 @@ struct EmitterDirection {
   Vec3 direction;
   float pdf;
 };
+
+/// A direction towards an emissive sphere for a Float's lanes of shading points (F = float: one
+/// point), with its density, and whether anything can arrive along it.
+template <typename F>
+struct BasicEmitterSample {
+  Vec3For<F> direction;
+  F pdf;
+  MaskFor<F> valid;  ///< false where the point cannot see the emitter or the sample degenerates
+};
+
+namespace detail {
+/// 1 - cos of the half-angle a sphere of radius `radius` subtends at distance `distance` from
+/// its centre: sin^2 / (1 + cos), which keeps its precision for small, distant spheres.
+template <FloatType F>
+inline F cone_one_minus_cos_max(F radius, F distance) {
+  const F sin2_max = min(splat<F>(1.0f), (radius / distance) * (radius / distance));
+  const F cos2_max =
+      max(splat<F>(0.0f), (distance - radius) * (distance + radius)) / (distance * distance);
+  return sin2_max / (1.0f + sqrt(cos2_max));
+}
+}  // namespace detail
+
+/// A direction from `point` towards the sphere (center, radius), lane by lane, from two
+/// uniform numbers: uniformly in the cone it subtends where the point sees it from `outside`,
+/// else through a uniform point of its area (every point of it is visible from inside), and
+/// nothing where the point lies on its outer surface (`none`). Each branch is computed only
+/// where some lane takes it.
+template <typename V3>
+inline BasicEmitterSample<FloatOf<V3>> sample_sphere_emitter(const V3& center, FloatOf<V3> radius,
+                                                             const V3& point,
+                                                             MaskFor<FloatOf<V3>> outside,
+                                                             MaskFor<FloatOf<V3>> none,
+                                                             const Vec2For<FloatOf<V3>>& u) {
+  using F = FloatOf<V3>;
+  BasicEmitterSample<F> sample{splat_vector<V3>(Vec3(0.0f)), splat<F>(0.0f), outside};
+  if (any(outside)) {
+    const V3 to_center = center - point;
+    const F distance = sqrt(dot(to_center, to_center));
+    const F one_minus_cos_max = detail::cone_one_minus_cos_max(radius, distance);
+    sample.direction = BasicFrame<V3>::around(to_center / distance)
+                           .to_world(sample_uniform_cone(u, one_minus_cos_max));
+    sample.pdf = uniform_cone_pdf(one_minus_cos_max);
+  }
+  if (!all(outside)) {
+    const V3 normal = sample_uniform_sphere(u);
+    const V3 to_light = center + radius * normal - point;
+    const F distance2 = dot(to_light, to_light);
+    const V3 direction = to_light / sqrt(distance2);
+    const F cosine = abs(dot(direction, normal));
+    const F area_pdf = distance2 / ((4.0f * kPi * radius * radius) * cosine);
+    sample.direction = select(outside, sample.direction, direction);
+    sample.pdf = select(outside, sample.pdf, area_pdf);
+    sample.valid = outside || (!none && distance2 > 0.0f && cosine > 0.0f);
+  }
+  return sample;
+}
 
 /// An emissive sphere. Its radiance leaves both sides of the surface, as every sphere's does.
 struct SphereEmitter {
@@ -53,28 +110,14 @@ struct SphereEmitter {
   }
 
   /// A direction from `point` towards the sphere, from two uniform numbers; none when the
-  /// point cannot see it or the sample degenerates.
+  /// point cannot see it or the sample degenerates (sample_sphere_emitter for one point).
   std::optional<EmitterDirection> sample_direction(const Vec3& point, EmitterView view,
                                                    Vec2 u) const {
-    if (view == EmitterView::outside) {
-      const Vec3 to_center = center - point;
-      const float distance = std::sqrt(glm::dot(to_center, to_center));
-      const float one_minus_cos_max = cone_one_minus_cos_max(distance);
-      const Vec3 local = sample_uniform_cone(u, one_minus_cos_max);
-      return EmitterDirection{Frame::around(to_center / distance).to_world(local),
-                              uniform_cone_pdf(one_minus_cos_max)};
-    }
-    if (view == EmitterView::inside) {
-      const Vec3 normal = sample_uniform_sphere(u);
-      const Vec3 to_light = center + radius * normal - point;
-      const float distance2 = glm::dot(to_light, to_light);
-      if (!(distance2 > 0.0f)) return std::nullopt;
-      const Vec3 direction = to_light / std::sqrt(distance2);
-      const float cosine = std::fabs(glm::dot(direction, normal));
-      if (!(cosine > 0.0f)) return std::nullopt;
-      return EmitterDirection{direction, distance2 / (area() * cosine)};
-    }
-    return std::nullopt;
+    if (view == EmitterView::none) return std::nullopt;
+    const BasicEmitterSample<float> sample =
+        sample_sphere_emitter(center, radius, point, view == EmitterView::outside, false, u);
+    if (!sample.valid) return std::nullopt;
+    return EmitterDirection{sample.direction, sample.pdf};
   }
 
   /// The density with which sample_direction(point, view, .) gives `direction`, where the ray
@@ -84,23 +127,14 @@ struct SphereEmitter {
                       const Vec3& normal) const {
     if (view == EmitterView::outside) {
       const Vec3 to_center = center - point;
-      return uniform_cone_pdf(cone_one_minus_cos_max(std::sqrt(glm::dot(to_center, to_center))));
+      return uniform_cone_pdf(
+          detail::cone_one_minus_cos_max(radius, std::sqrt(glm::dot(to_center, to_center))));
     }
     if (view == EmitterView::inside) {
       const float cosine = std::fabs(glm::dot(direction, normal));
       return cosine > 0.0f ? distance * distance / (area() * cosine) : 0.0f;
     }
     return 0.0f;
-  }
-
- private:
-  /// 1 - cos of the half-angle the sphere subtends at distance `distance` from its centre:
-  /// sin^2 / (1 + cos), which keeps its precision for small, distant spheres.
-  float cone_one_minus_cos_max(float distance) const {
-    const float sin2_max = std::min(1.0f, (radius / distance) * (radius / distance));
-    const float cos2_max =
-        std::max(0.0f, (distance - radius) * (distance + radius)) / (distance * distance);
-    return sin2_max / (1.0f + std::sqrt(cos2_max));
   }
 };
 

@@ -892,44 +892,23 @@ class WavefrontExecution {
     const Vec3Lanes radiance{words[4], words[5], words[6]};
     const auto emitter_sphere = std::bit_cast<IntLanes>(words[7]);
     const LaneMask on_emitter = lanes & lane_bits(emitter_sphere == hit_sphere);
-    // EmitterView: from outside the cone; from inside (or from the emitter's inner surface)
-    // a point on its area; from its outer surface, nothing.
-    const Vec3Lanes to_center = center - point;
-    const FloatLanes distance2 = dot(to_center, to_center);
+    // SphereEmitter::view_from lane by lane: from outside, from inside (or from the emitter's
+    // inner surface), or from its outer surface (none). Lanes not sampled count as outside,
+    // so that they alone never make the area branch run.
+    const Vec3Lanes offset = point - center;
     const IntLanes on = lanes_of_bits(on_emitter);
-    const IntLanes outside = ~on & (distance2 > radius * radius);
+    const IntLanes outside =
+        ~lanes_of_bits(lanes) | (~on & (dot(offset, offset) > radius * radius));
     const IntLanes none = on & ~from_inside;
-
-    // Outside: uniform in the cone the sphere subtends (SphereEmitter::cone_one_minus_cos_max).
-    const FloatLanes distance = sqrt(distance2);
-    const FloatLanes sin2_max = min(broadcast(1.0f), (radius / distance) * (radius / distance));
-    const FloatLanes cos2_max =
-        max(broadcast(0.0f), (distance - radius) * (distance + radius)) / (distance * distance);
-    const FloatLanes one_minus_cos_max = sin2_max / (1.0f + sqrt(cos2_max));
-    const Vec3Lanes cone_direction = BasicFrame<Vec3Lanes>::around(to_center / distance)
-                                         .to_world(sample_uniform_cone(u, one_minus_cos_max));
-    const FloatLanes cone_pdf = uniform_cone_pdf(one_minus_cos_max);
-
-    // Inside: through a uniform point of the sphere's area (only where some lane needs it).
-    Vec3Lanes toward = cone_direction;
-    FloatLanes pdf = cone_pdf;
-    IntLanes area_valid = broadcast(0);
-    if ((lanes & ~lane_bits(outside)) != 0) {
-      const Vec3Lanes area_normal = sample_uniform_sphere(u);
-      const Vec3Lanes to_light = center + radius * area_normal - point;
-      const FloatLanes light_distance2 = dot(to_light, to_light);
-      const Vec3Lanes area_direction = to_light / sqrt(light_distance2);
-      const FloatLanes area_cosine = abs(dot(area_direction, area_normal));
-      const FloatLanes area_pdf = light_distance2 / ((4.0f * kPi * radius * radius) * area_cosine);
-      area_valid = (light_distance2 > 0.0f) & (area_cosine > 0.0f);
-      toward = select(outside, cone_direction, area_direction);
-      pdf = select(outside, cone_pdf, area_pdf);
-    }
+    const BasicEmitterSample<FloatLanes> sample =
+        sample_sphere_emitter(center, radius, point, outside, none, u);
+    const Vec3Lanes& toward = sample.direction;
+    const FloatLanes& pdf = sample.pdf;
     const FloatLanes cosine = dot(toward, facing);
     const Vec3Lanes reflected =
         select(cosine > 0.0f, albedo * (kInvPi * cosine), Vec3Lanes::broadcast(Color(0.0f)));
     const IntLanes arrives =
-        (outside | (~none & area_valid)) & (pdf > 0.0f) &
+        sample.valid & (pdf > 0.0f) &
         ((reflected.x != 0.0f) | (reflected.y != 0.0f) | (reflected.z != 0.0f));
     const LaneMask sampled = lanes & lane_bits(arrives);
     if (sampled == 0) return;
