@@ -3,8 +3,6 @@
 // report did this with a virtual Sphere::color(P); here the set of kinds is closed per build
 // and dispatched with a switch on a one-byte tag stored with the sphere.
 
-#include <cmath>
-
 #include "glint/policy/concepts.hpp"
 
 namespace glint {
@@ -32,13 +30,17 @@ struct BuiltinShading {
   }
 
   /// Eight squares around the equator and four from pole to pole, alternating between the
-  /// colour and its complement.
+  /// colour and its complement: sectors of 45 degrees of longitude (around the y axis) and of
+  /// latitude. Only the parity of a square matters, and it flips across each plane that bounds
+  /// the squares (z = 0, x = 0, z = x and z = -x for the longitude; y = sqrt(1/2), 0 and
+  /// -sqrt(1/2) for the latitude), so comparisons decide it: no inverse trigonometry from the
+  /// C library, whose rounding differs between libraries, decides a pixel.
   static Color checker_color(Color base, Vec3 direction) {
-    const float longitude = std::atan2(direction.z, direction.x) + kPi;                // [0, 2pi]
-    const float latitude = std::acos(std::fmax(-1.0f, std::fmin(1.0f, direction.y)));  // [0, pi]
-    const int u = static_cast<int>(longitude * (4.0f * kInvPi));
-    const int v = static_cast<int>(latitude * (4.0f * kInvPi));
-    return ((u + v) & 1) ? Color(1.0f) - base : base;
+    const float x = direction.x, y = direction.y, z = direction.z;
+    constexpr float kHalfSqrt2 = 0.70710678f;
+    const bool longitude_odd = !((z < 0.0f) ^ (x < 0.0f) ^ (z < x) ^ (z < -x));
+    const bool latitude_odd = (y <= kHalfSqrt2) ^ (y <= 0.0f) ^ (y <= -kHalfSqrt2);
+    return longitude_odd != latitude_odd ? Color(1.0f) - base : base;
   }
 
   static Color color(ShadingKind kind, Color base, Vec3 direction) {
