@@ -73,7 +73,8 @@ double direct_radiance(const glint::test::SceneModel& model, int s, const Vec3d&
 }
 
 /// Renders `scene` as one pixel looking at `target` (exactly: the ray through the centre of a
-/// one-pixel image is the viewing direction), with direct light only.
+/// one-pixel image is the viewing direction; the box and tent filters, which ignore sigma, aim
+/// within a pixel of 1e-3 degrees of it), with one sample of direct light only.
 template <typename R>
 Color render_towards(glint::SceneDescription scene, const Vec3& target) {
   scene.camera.look_at = target;
@@ -81,7 +82,7 @@ Color render_towards(glint::SceneDescription scene, const Vec3& target) {
   glint::RenderSettings settings;
   settings.width = 1;
   settings.height = 1;
-  settings.samples_per_pixel = 2;
+  settings.samples_per_pixel = 1;
   settings.max_depth = 0;
   settings.antialias_sigma = 0.0f;
   settings.threads = 1;
@@ -110,21 +111,25 @@ void check_crossing(const glint::SceneDescription& scene, int a, int b, const Ve
     REQUIRE(seen);
     REQUIRE(std::abs(seen->t - distance) < 1e-9 * distance);
     const Color pixel = render_towards<R>(scene, Vec3(point));
-    INFO(glint_test::renderer_name<R>()
-         << ": crossing of spheres " << a << " and " << b << " at (" << point.x << ", " << point.y
-         << ", " << point.z << "); pixel (" << pixel.x << ", " << pixel.y << ", " << pixel.z
-         << ")");
+    INFO(R::Config::info.name << " (" << R::ExecutionModel::kName << "): crossing of spheres " << a
+                              << " and " << b << " at (" << point.x << ", " << point.y << ", "
+                              << point.z << "); pixel (" << pixel.x << ", " << pixel.y << ", "
+                              << pixel.z << ")");
+    bool like_a = true, like_b = true;
+    double difference = 0.0;
     for (int channel = 0; channel < 3; ++channel) {
       const double on_a = direct_radiance(model, a, point, channel);
       const double on_b = direct_radiance(model, b, point, channel);
       INFO("channel " << channel << ": " << on_a << " on sphere " << a << ", " << on_b
                       << " on sphere " << b);
-      // The two surfaces are told apart, and neither is dark.
-      REQUIRE(std::abs(on_a - on_b) > 0.1 * std::max(on_a, on_b));
-      REQUIRE(std::min(on_a, on_b) > 0.0);
+      REQUIRE(std::min(on_a, on_b) > 0.0);  // neither is dark
+      difference = std::max(difference, std::abs(on_a - on_b) / std::max(on_a, on_b));
       const double value = pixel[channel];
-      CHECK((std::abs(value - on_a) <= 1e-3 * on_a || std::abs(value - on_b) <= 1e-3 * on_b));
+      like_a = like_a && std::abs(value - on_a) <= 1e-3 * on_a;
+      like_b = like_b && std::abs(value - on_b) <= 1e-3 * on_b;
     }
+    REQUIRE(difference > 0.1);  // the two surfaces are told apart
+    CHECK((like_a || like_b));
     ++checked;
   }
   CHECK(checked == count);
@@ -247,7 +252,7 @@ std::vector<double> seam_ratios(const glint::SceneDescription& scene, const glin
 }
 
 glint::SceneDescription lamp_room() {
-  return glint::read_scene_file(std::string(GLINT_SOURCE_DIR) + "/bench/scenes/lamp-room.scene");
+  return glint::read_scene_file(GLINT_SOURCE_DIR "/bench/scenes/lamp-room.scene");
 }
 
 template <typename R>
@@ -263,7 +268,7 @@ void check_lamp_room(int size, int spp) {
   const glint::RenderResult result = glint_test::render_by<R>(glint::Scene::build(scene), settings);
   CHECK(result.stats.invalid_samples == 0);
   const std::vector<double> ratios = seam_ratios(scene, result.film);
-  INFO(glint_test::renderer_name<R>());
+  INFO(R::Config::info.name << " (" << R::ExecutionModel::kName << ")");
   // Every corner of the image's square looks at two walls' seam, past the back wall.
   CHECK(ratios.size() >= 8);
   // A seam is a little darker than the walls beside it (less of the room lights it), and the
