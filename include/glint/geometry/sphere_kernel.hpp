@@ -1,7 +1,8 @@
 #pragma once
 // The leaf kernel: one ray against a run of spheres, keeping the first hit in hit order
 // (accelerator.hpp). test_sphere is the reference for one sphere and test_spheres runs it over
-// a run; SphereSet's and WallSet's scalar paths and the BVH's leaves use these. avx2::closest_hit
+// a run; SphereSet's and WallSet's scalar paths and the BVH's leaves use these. Where spheres
+// cross, a ray's origin on one of them is decided by its direction (see below). avx2::closest_hit
 // and avx2::any_hit are the 8-wide form of the same test for the sets' structure-of-arrays
 // storage (SphereColumns for spheres given by their centre, AnchoredColumns for anchored ones,
 // see ray_sphere.hpp): the same formulas with the same tie rule, but their own order of fused
