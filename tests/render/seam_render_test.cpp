@@ -283,7 +283,7 @@ TEST_CASE("seams: lamp-room through pixel centres has no dark pixel on its diago
           "[render][seam]") {
   // The variant without antialiasing (bounces find the lamp by chance: few pixels, many
   // samples); emitter sampling through pixel centres with both execution models.
-  check_lamp_room<glint::Renderer<glint::variants::no_antialiasing>>(16, 4096);
+  check_lamp_room<glint::Renderer<glint::variants::no_antialiasing>>(22, 2048);
   check_lamp_room<glint::Renderer<glint::variants::emitter_sampling>>(32, 256);
   check_lamp_room<glint::Renderer<glint::variants::fast>>(32, 256);
   check_lamp_room<glint::WavefrontRenderer<glint::variants::fast>>(32, 256);
