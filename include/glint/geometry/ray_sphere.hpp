@@ -45,15 +45,16 @@ struct SphereQuadratic {
 };
 
 /// The quadratic of a sphere given by its centre and squared radius, with Haines's
-/// discriminant r^2 - |f - (f.d)d|^2.
-inline SphereQuadratic sphere_quadratic(const Vec3& origin, const Vec3& direction,
-                                        const Vec3& center, float radius_squared) {
+/// discriminant r^2 - |f - (f.d)d|^2; false, leaving `q` unset, if the ray's line misses it.
+inline bool sphere_quadratic(const Vec3& origin, const Vec3& direction, const Vec3& center,
+                             float radius_squared, SphereQuadratic& q) {
   const Vec3 f = origin - center;
   const float b = glm::dot(f, direction);
   const Vec3 perpendicular = f - b * direction;
   const float discriminant = radius_squared - glm::dot(perpendicular, perpendicular);
-  const float c = glm::dot(f, f) - radius_squared;
-  return {b, c, discriminant};
+  if (!(discriminant >= 0.0f)) return false;
+  q = {b, glm::dot(f, f) - radius_squared, discriminant};
+  return true;
 }
 
 /// Both ray parameters where the ray meets the sphere of squared radius `radius_squared`,
@@ -61,8 +62,8 @@ inline SphereQuadratic sphere_quadratic(const Vec3& origin, const Vec3& directio
 inline bool intersect_sphere_squared_radius(const Vec3& origin, const Vec3& direction,
                                             const Vec3& center, float radius_squared,
                                             SphereRoots& roots) {
-  const SphereQuadratic q = sphere_quadratic(origin, direction, center, radius_squared);
-  if (!(q.discriminant >= 0.0f)) return false;
+  SphereQuadratic q;
+  if (!sphere_quadratic(origin, direction, center, radius_squared, q)) return false;
   roots = roots_from(q.b, q.c, q.discriminant);
   return true;
 }
@@ -118,21 +119,25 @@ inline float anchored_discriminant(const Vec3& f, const Vec3& direction,
   return sphere.radius_squared - glm::dot(perpendicular, perpendicular);
 }
 
-/// The quadratic of an anchored sphere (see SphereQuadratic).
-inline SphereQuadratic anchored_quadratic(const Vec3& origin, const Vec3& direction,
-                                          const AnchoredSphere& sphere) {
+/// The quadratic of an anchored sphere (see SphereQuadratic); false, leaving `q` unset, if the
+/// ray's line misses it.
+inline bool anchored_quadratic(const Vec3& origin, const Vec3& direction,
+                               const AnchoredSphere& sphere, SphereQuadratic& q) {
   const Vec3 g = origin - sphere.anchor;
   const Vec3 f = g + sphere.offset;
   const float c = glm::dot(g, f + sphere.offset);
   const float b = glm::dot(f, direction);
-  return {b, c, anchored_discriminant(f, direction, sphere, b, c)};
+  const float discriminant = anchored_discriminant(f, direction, sphere, b, c);
+  if (!(discriminant >= 0.0f)) return false;
+  q = {b, c, discriminant};
+  return true;
 }
 
 /// intersect_sphere for an anchored sphere. `direction` must be unit length.
 inline bool intersect_anchored_sphere(const Vec3& origin, const Vec3& direction,
                                       const AnchoredSphere& sphere, SphereRoots& roots) {
-  const SphereQuadratic q = anchored_quadratic(origin, direction, sphere);
-  if (!(q.discriminant >= 0.0f)) return false;
+  SphereQuadratic q;
+  if (!anchored_quadratic(origin, direction, sphere, q)) return false;
   roots = roots_from(q.b, q.c, q.discriminant);
   return true;
 }

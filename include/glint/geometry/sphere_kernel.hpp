@@ -109,8 +109,8 @@ inline bool take_first_root(const Ray& ray, const SphereQuadratic& q, bool on_su
 inline bool test_sphere(const Ray& ray, const Vec3& center, float radius_squared, std::uint32_t id,
                         SphereHit& best) {
   if (id == ray.origin_sphere) return false;
-  const SphereQuadratic q = sphere_quadratic(ray.origin, ray.direction, center, radius_squared);
-  if (!(q.discriminant >= 0.0f)) return false;
+  SphereQuadratic q;
+  if (!sphere_quadratic(ray.origin, ray.direction, center, radius_squared, q)) return false;
   return take_first_root(ray, q, origin_on_surface(ray, q, radius_squared, radius_squared), id,
                          best);
 }
@@ -119,8 +119,8 @@ inline bool test_sphere(const Ray& ray, const Vec3& center, float radius_squared
 inline bool test_sphere(const Ray& ray, const AnchoredSphere& sphere, std::uint32_t id,
                         SphereHit& best) {
   if (id == ray.origin_sphere) return false;
-  const SphereQuadratic q = anchored_quadratic(ray.origin, ray.direction, sphere);
-  if (!(q.discriminant >= 0.0f)) return false;
+  SphereQuadratic q;
+  if (!anchored_quadratic(ray.origin, ray.direction, sphere, q)) return false;
   const Vec3 from_anchor = ray.origin - sphere.anchor;
   return take_first_root(
       ray, q, origin_on_surface(ray, q, sphere.radius_squared, glm::dot(from_anchor, from_anchor)),
