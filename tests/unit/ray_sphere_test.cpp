@@ -15,6 +15,7 @@
 #include "glint/geometry/ray_sphere.hpp"
 #include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_bvh.hpp"
+#include "glint/geometry/sphere_kernel.hpp"
 #include "glint/geometry/sphere_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/scene/scene.hpp"
@@ -280,6 +281,38 @@ struct Reference {
   float best = glint::kInfinity;      // nearest non-marginal hit
 };
 
+enum class OnSurface { no, yes, marginal };
+
+/// Whether the origin of `ray` counts as on the sphere (center, radius) for the kernels' rule
+/// where spheres cross (sphere_kernel.hpp): for a ray leaving another sphere from its origin,
+/// |c| = | |f|^2 - r^2 | below 2 sqrt(2) tol r sqrt(|origin|^2 + r^2), here in long double;
+/// marginal within an eighth of that bound, where the kernels' rounding decides. For a sphere
+/// that a Scene keeps among its walls (`anchored_at`: the camera), the bound has the origin's
+/// distance from the anchor (the surface point nearest the camera) in place of r.
+OnSurface on_surface(const glint::Ray& ray, const Vec3& center, float radius,
+                     const std::optional<Vec3>& anchored_at) {
+  if (ray.origin_sphere == glint::kNoSphere || ray.t_min > 0.0f) return OnSurface::no;
+  using L = long double;
+  const L fx = L(ray.origin.x) - L(center.x), fy = L(ray.origin.y) - L(center.y),
+          fz = L(ray.origin.z) - L(center.z);
+  const L r = radius;
+  const L c = std::abs(fx * fx + fy * fy + fz * fz - r * r);
+  const L origin2 = L(ray.origin.x) * ray.origin.x + L(ray.origin.y) * ray.origin.y +
+                    L(ray.origin.z) * ray.origin.z;
+  L extent2 = r * r;
+  if (anchored_at) {
+    const glm::dvec3 to_camera = glm::dvec3(*anchored_at) - glm::dvec3(center);
+    const glm::dvec3 anchor = glm::dvec3(center) + double(radius) * glm::normalize(to_camera);
+    const glm::dvec3 g = glm::dvec3(ray.origin) - anchor;
+    extent2 = glm::dot(g, g);
+  }
+  const L bound =
+      2 * std::sqrt(L(2)) * L(glint::kOnSurfaceTolerance) * r * std::sqrt(origin2 + extent2);
+  if (c < bound * L(7) / 8) return OnSurface::yes;
+  if (c < bound * L(9) / 8) return OnSurface::marginal;
+  return OnSurface::no;
+}
+
 /// The brute-force loop. With `apply_origin_rule` the ray's origin sphere is hit on its far
 /// side when the ray heads into it (what Scene does); without, it is skipped altogether (what
 /// the acceleration structures do, leaving the rule to their caller).
@@ -304,7 +337,23 @@ Reference brute_force(const std::vector<TestSphere>& spheres, const glint::Ray& 
     const float b = glm::dot(f, ray.direction);
     const Vec3 perpendicular = f - b * ray.direction;
     const float discriminant = s.radius * s.radius - glm::dot(perpendicular, perpendicular);
-    const bool near_tangent = std::abs(discriminant) < 1e-3f * s.radius * s.radius;
+    bool near_tangent = std::abs(discriminant) < 1e-3f * s.radius * s.radius;
+    // A ray leaving a sphere from an origin that counts as on this one (sphere_kernel.hpp)
+    // meets it at t = 0 if it heads into it, else not at all; near the bound either way.
+    // A Scene keeps the walls among its anchored spheres (anchored at its camera).
+    const bool anchored = apply_origin_rule && s.radius > 1e4f;
+    const OnSurface on =
+        on_surface(ray, s.center, s.radius,
+                   anchored ? std::optional(glint::CameraDescription{}.position) : std::nullopt);
+    if (on != OnSurface::no) {
+      const bool marginal = on == OnSurface::marginal || near_tangent;
+      if (b < 0.0f && ray.t_max > 0.0f) {
+        ref.candidates.push_back({s.id, 0.0f, slack, marginal});
+        if (!marginal) ref.best = 0.0f;
+      }
+      if (!marginal) continue;
+      near_tangent = true;  // the roots below are in doubt too
+    }
     glint::SphereRoots roots{};
     if (!glint::intersect_sphere(ray.origin, ray.direction, s.center, s.radius, roots)) {
       if (near_tangent && -b > ray.t_min && -b < ray.t_max)

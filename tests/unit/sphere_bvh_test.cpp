@@ -1,5 +1,6 @@
-// The hierarchy must answer exactly like a brute-force scan of intersect_sphere: same nearest
-// sphere, same distance, same occlusion verdict, for random rays through random sphere sets,
+// The hierarchy must answer exactly like a brute-force scan of intersect_sphere (with the rule
+// for an origin on a crossing sphere, sphere_kernel.hpp): same nearest sphere, same distance,
+// same occlusion verdict, for random rays through random sphere sets,
 // including degenerate ones (all centres equal, all in a plane, one huge sphere among tiny ones).
 
 #include <catch2/catch.hpp>
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include "glint/geometry/sphere_bvh.hpp"
+#include "glint/geometry/sphere_kernel.hpp"
 #include "glint/math/random.hpp"
 #include "glint/math/sampling.hpp"
 
@@ -23,8 +25,19 @@ struct Reference {
     best.t = ray.t_max;
     for (const auto& s : spheres) {
       if (s.id == ray.origin_sphere) continue;
-      glint::SphereRoots roots;
-      if (!glint::intersect_sphere(ray.origin, ray.direction, s.center, s.radius, roots)) continue;
+      glint::SphereQuadratic q;
+      if (!glint::sphere_quadratic(ray.origin, ray.direction, s.center, s.radius * s.radius, q))
+        continue;
+      // An origin on this sphere too (a duplicate of the one the ray leaves): t = 0 heading in,
+      // no hit heading out.
+      if (glint::origin_on_surface(ray, q, s.radius * s.radius, s.radius * s.radius)) {
+        if (q.b < 0.0f && (0.0f < best.t || (best.t == 0.0f && s.id < best.sphere))) {
+          best.t = 0.0f;
+          best.sphere = s.id;
+        }
+        continue;
+      }
+      const glint::SphereRoots roots = glint::roots_from(q.b, q.c, q.discriminant);
       const float t = roots.near > ray.t_min ? roots.near : roots.far;
       // Nearest first, the lowest id at equal t; t_max itself is excluded.
       if (t > ray.t_min && t < ray.t_max && (t < best.t || (t == best.t && s.id < best.sphere))) {

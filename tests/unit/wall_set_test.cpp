@@ -14,6 +14,7 @@
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_sphere.hpp"
 #include "glint/geometry/simd.hpp"
+#include "glint/geometry/sphere_kernel.hpp"
 #include "glint/geometry/wall_set.hpp"
 #include "glint/math/random.hpp"
 
@@ -74,6 +75,22 @@ Answer solve(const glint::AnchoredSphere& s, const glint::Ray& ray) {
                                     (far_form ? 4.0 * double(radius_squared) : 0.0);
   Answer answer;
   answer.marginal = std::abs(double(discriminant)) <= 64.0 * kUnitRoundoff * discriminant_error;
+  // A ray leaving another sphere from an origin that counts as on this one (the kernels' rule
+  // where spheres cross, sphere_kernel.hpp: |c| below 2 sqrt(2) tol r sqrt(|origin|^2 + |g|^2))
+  // meets it at t = 0 if it heads into it (b < 0), else not at all; rounding decides within an
+  // eighth of the bound.
+  if (ray.origin_sphere != glint::kNoSphere && ray.t_min <= 0.0f) {
+    const Long o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+    const Long bound = 2 * std::sqrt(Long(2)) * Long(glint::kOnSurfaceTolerance) *
+                       std::sqrt(radius_squared) * std::sqrt(dot(o, o) + dot(g, g));
+    if (std::abs(c) < bound * Long(9) / 8) {
+      answer.marginal = answer.marginal || std::abs(c) > bound * Long(7) / 8;
+      answer.hit = b < 0;
+      answer.t = 0.0;
+      if (!answer.marginal) return answer;
+      answer.hit = true;  // either answer: this t = 0 or the roots below
+    }
+  }
   if (discriminant < 0) return answer;
   const Long root = std::sqrt(discriminant);
   const Long q = -(b + std::copysign(root, b));

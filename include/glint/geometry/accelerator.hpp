@@ -31,7 +31,8 @@ inline SphereHit hit_to_beat(const Ray& ray, const SphereHit& hit) {
 }
 
 /// A structure of spheres queried by rays. Both queries skip the ray's origin sphere (the
-/// caller applies the rule of Ray for it) and consider t in (ray.t_min, ray.t_max) only.
+/// caller applies the rule of Ray for it) and consider t in (ray.t_min, ray.t_max) only, and
+/// t = 0 for a sphere that a ray leaving another one enters at its origin (sphere_kernel.hpp).
 ///  - closest_hit(ray, hit): the first sphere in hit order that comes before `hit` (see
 ///    hit_to_beat); if there is one, stores it in `hit` and returns true.
 ///  - any_hit(ray): whether any sphere is hit at all.

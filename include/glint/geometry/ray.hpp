@@ -13,7 +13,9 @@ inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
 /// A ray with a unit direction. A ray that starts on a sphere's surface remembers that sphere
 /// and whether it heads into it: leaving outwards it cannot meet that (convex) sphere again,
 /// heading inwards it meets only the far side. This replaces the usual self-intersection
-/// epsilon with an exact rule (see Scene::closest_hit).
+/// epsilon with an exact rule (see Scene::closest_hit). Another sphere that passes through its
+/// origin to within the rounding of a hit point (where spheres cross) is decided the same way,
+/// by the direction: met at t = 0 if the ray heads into it, else not at all (sphere_kernel.hpp).
 struct Ray {
   Vec3 origin{0.0f};
   Vec3 direction{0.0f, 0.0f, 1.0f};

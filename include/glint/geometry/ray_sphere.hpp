@@ -33,18 +33,38 @@ inline SphereRoots roots_from(float b, float c, float discriminant) {
   return {min_of(t0, q), max_of(t0, q)};
 }
 
-/// Both ray parameters where the ray meets the sphere of squared radius `radius_squared`,
-/// near <= far; false if it misses. `direction` must be unit length.
-inline bool intersect_sphere_squared_radius(const Vec3& origin, const Vec3& direction,
-                                            const Vec3& center, float radius_squared,
-                                            SphereRoots& roots) {
+/// The quadratic in t of a ray (unit direction) and a sphere, t^2 + 2 b t + c = 0: b = f.d and
+/// c = |f|^2 - r^2 for the offset f of the ray's origin from the centre, and its discriminant
+/// b^2 - c in the form accurate for the kind of sphere. c is the origin's signed distance from
+/// the surface times |f| + r, and b the cosine of the direction with the outward normal there
+/// times |f|: what decides a root at the origin itself (see sphere_kernel.hpp).
+struct SphereQuadratic {
+  float b;
+  float c;
+  float discriminant;
+};
+
+/// The quadratic of a sphere given by its centre and squared radius, with Haines's
+/// discriminant r^2 - |f - (f.d)d|^2; false, leaving `q` unset, if the ray's line misses it.
+inline bool sphere_quadratic(const Vec3& origin, const Vec3& direction, const Vec3& center,
+                             float radius_squared, SphereQuadratic& q) {
   const Vec3 f = origin - center;
   const float b = glm::dot(f, direction);
   const Vec3 perpendicular = f - b * direction;
   const float discriminant = radius_squared - glm::dot(perpendicular, perpendicular);
   if (!(discriminant >= 0.0f)) return false;
-  const float c = glm::dot(f, f) - radius_squared;
-  roots = roots_from(b, c, discriminant);
+  q = {b, glm::dot(f, f) - radius_squared, discriminant};
+  return true;
+}
+
+/// Both ray parameters where the ray meets the sphere of squared radius `radius_squared`,
+/// near <= far; false if it misses. `direction` must be unit length.
+inline bool intersect_sphere_squared_radius(const Vec3& origin, const Vec3& direction,
+                                            const Vec3& center, float radius_squared,
+                                            SphereRoots& roots) {
+  SphereQuadratic q;
+  if (!sphere_quadratic(origin, direction, center, radius_squared, q)) return false;
+  roots = roots_from(q.b, q.c, q.discriminant);
   return true;
 }
 
@@ -99,16 +119,26 @@ inline float anchored_discriminant(const Vec3& f, const Vec3& direction,
   return sphere.radius_squared - glm::dot(perpendicular, perpendicular);
 }
 
-/// intersect_sphere for an anchored sphere. `direction` must be unit length.
-inline bool intersect_anchored_sphere(const Vec3& origin, const Vec3& direction,
-                                      const AnchoredSphere& sphere, SphereRoots& roots) {
+/// The quadratic of an anchored sphere (see SphereQuadratic); false, leaving `q` unset, if the
+/// ray's line misses it.
+inline bool anchored_quadratic(const Vec3& origin, const Vec3& direction,
+                               const AnchoredSphere& sphere, SphereQuadratic& q) {
   const Vec3 g = origin - sphere.anchor;
   const Vec3 f = g + sphere.offset;
   const float c = glm::dot(g, f + sphere.offset);
   const float b = glm::dot(f, direction);
   const float discriminant = anchored_discriminant(f, direction, sphere, b, c);
   if (!(discriminant >= 0.0f)) return false;
-  roots = roots_from(b, c, discriminant);
+  q = {b, c, discriminant};
+  return true;
+}
+
+/// intersect_sphere for an anchored sphere. `direction` must be unit length.
+inline bool intersect_anchored_sphere(const Vec3& origin, const Vec3& direction,
+                                      const AnchoredSphere& sphere, SphereRoots& roots) {
+  SphereQuadratic q;
+  if (!anchored_quadratic(origin, direction, sphere, q)) return false;
+  roots = roots_from(q.b, q.c, q.discriminant);
   return true;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // The leaf kernel: one ray against a run of spheres, keeping the first hit in hit order
 // (accelerator.hpp). test_sphere is the reference for one sphere and test_spheres runs it over
-// a run; SphereSet's and WallSet's scalar paths and the BVH's leaves use these. avx2::closest_hit
+// a run; SphereSet's and WallSet's scalar paths and the BVH's leaves use these. Where spheres
+// cross, a ray's origin on one of them is decided by its direction (see below). avx2::closest_hit
 // and avx2::any_hit are the 8-wide form of the same test for the sets' structure-of-arrays
 // storage (SphereColumns for spheres given by their centre, AnchoredColumns for anchored ones,
 // see ray_sphere.hpp): the same formulas with the same tie rule, but their own order of fused
@@ -37,35 +38,93 @@ concept IndexedAnchoredSpheres = requires(const S& s, std::size_t i) {
   { s.id(i) } -> std::convertible_to<std::uint32_t>;
 };
 
-/// If the first of a sphere's roots past ray.t_min comes before `best`, makes it the best and
-/// returns true.
-inline bool take_first_root(const Ray& ray, const SphereRoots& roots, std::uint32_t id,
-                            SphereHit& best) {
-  const float t = roots.near > ray.t_min ? roots.near : roots.far;
+// Where spheres cross. A ray that leaves a sphere starts at a hit point rounded to float: on
+// that sphere as far as the rule of Ray goes, but where another sphere crosses it there (a seam
+// of two walls, the crease of two overlapping balls) only near that other one, inside it or
+// outside by a rounding. Its quadratic there has a root within rounding of t = 0 whose sign is
+// noise: taken at face value, a ray heading out of the room through the other wall passes
+// through it, and one heading into the room meets it from inside at t ~ 1e-6, so that the path
+// continues inside a wall and the pixel comes out black. So for a ray that leaves a sphere from
+// its origin (t_min <= 0), an origin within about kOnSurfaceTolerance (|origin| + s) of another
+// sphere's surface counts as on it (s: the radius, or for an anchored sphere the origin's
+// distance from the anchor; with |origin| these scale the kernel's error in c and the rounding of
+// the hit point), and its roots count as 0 and -2b: heading into the sphere (b < 0, against the
+// outward normal) the ray meets it at t = 0, its origin; heading out it does not meet it. Only
+// where the ray meets the sphere's line at all (a discriminant >= 0, which a point on the
+// surface always has), so that what culls by the discriminant stays conservative.
+//
+// The tolerance, 2^-19 (32 u, u = 2^-24) of |origin| + s, is several times what the rounding of
+// a hit point (a few u |origin|) and the kernel's error in c (a few u s in distance) come to, and
+// covers the error of where along the ray a hit was found for rays that came from up to about ten
+// times |origin| + s away (which the next ray does not know: a hit point of a camera much
+// farther away may still land inside a sphere it only touches). The test is
+// c^2 < 8 tol^2 r^2 (|origin|^2 + s^2), without a square root, strict so that a factor of 0
+// turns it off.
+
+/// The relative distance from a sphere's surface within which a ray's origin counts as on it.
+inline constexpr float kOnSurfaceTolerance = 0x1p-19f;
+/// 8 kOnSurfaceTolerance^2, the factor of the test above.
+inline constexpr float kOnSurfaceFactor = 8.0f * kOnSurfaceTolerance * kOnSurfaceTolerance;
+
+/// The factor of the on-surface test for `ray`: kOnSurfaceFactor for a ray that leaves a sphere
+/// from its origin, else 0 (no origin counts as on a surface).
+inline float on_surface_factor(const Ray& ray) {
+  return ray.origin_sphere != kNoSphere && ray.t_min <= 0.0f ? kOnSurfaceFactor : 0.0f;
+}
+
+/// Whether the origin of `ray` counts as on the sphere of quadratic `q` and squared radius
+/// `radius_squared`, `extent_squared` being s^2 (see above).
+inline bool origin_on_surface(const Ray& ray, const SphereQuadratic& q, float radius_squared,
+                              float extent_squared) {
+  const float factor = on_surface_factor(ray);
+  if (factor == 0.0f) return false;
+  const float tolerance =
+      radius_squared * (factor * extent_squared + factor * glm::dot(ray.origin, ray.origin));
+  return q.c * q.c < tolerance;
+}
+
+/// If the ray meets the sphere of quadratic `q` (discriminant >= 0) past ray.t_min at a point
+/// that comes before `best`, makes it the best and returns true. With `on_surface` (the origin
+/// counts as on the sphere), that point is the origin if the ray heads into the sphere, and
+/// there is none otherwise; else it is the first root past ray.t_min.
+inline bool take_first_root(const Ray& ray, const SphereQuadratic& q, bool on_surface,
+                            std::uint32_t id, SphereHit& best) {
+  float t = 0.0f;
+  if (on_surface) {
+    if (!(q.b < 0.0f)) return false;
+  } else {
+    const SphereRoots roots = roots_from(q.b, q.c, q.discriminant);
+    t = roots.near > ray.t_min ? roots.near : roots.far;
+    if (!(t > ray.t_min)) return false;
+  }
   const SphereHit candidate{t, id};
-  if (!(t > ray.t_min) || !comes_before(candidate, best)) return false;
+  if (!comes_before(candidate, best)) return false;
   best = candidate;
   return true;
 }
 
 /// If the ray meets sphere `id` past ray.t_min at a point that comes before `best`, makes that
-/// point the best and returns true. The ray's origin sphere is skipped (see Ray).
+/// point the best and returns true. The ray's origin sphere is skipped (see Ray), and an origin
+/// on the sphere decided by the ray's direction (see above).
 inline bool test_sphere(const Ray& ray, const Vec3& center, float radius_squared, std::uint32_t id,
                         SphereHit& best) {
   if (id == ray.origin_sphere) return false;
-  SphereRoots roots;
-  if (!intersect_sphere_squared_radius(ray.origin, ray.direction, center, radius_squared, roots))
-    return false;
-  return take_first_root(ray, roots, id, best);
+  SphereQuadratic q;
+  if (!sphere_quadratic(ray.origin, ray.direction, center, radius_squared, q)) return false;
+  return take_first_root(ray, q, origin_on_surface(ray, q, radius_squared, radius_squared), id,
+                         best);
 }
 
 /// test_sphere for an anchored sphere.
 inline bool test_sphere(const Ray& ray, const AnchoredSphere& sphere, std::uint32_t id,
                         SphereHit& best) {
   if (id == ray.origin_sphere) return false;
-  SphereRoots roots;
-  if (!intersect_anchored_sphere(ray.origin, ray.direction, sphere, roots)) return false;
-  return take_first_root(ray, roots, id, best);
+  SphereQuadratic q;
+  if (!anchored_quadratic(ray.origin, ray.direction, sphere, q)) return false;
+  const Vec3 from_anchor = ray.origin - sphere.anchor;
+  return take_first_root(
+      ray, q, origin_on_surface(ray, q, sphere.radius_squared, glm::dot(from_anchor, from_anchor)),
+      id, best);
 }
 
 template <IndexedSpheres Spheres>
@@ -158,16 +217,16 @@ struct AnchoredColumns {
 struct RayLanes {
   __m256 ox, oy, oz, dx, dy, dz, t_min;
   __m256i origin_sphere;
+  /// The on-surface test's factor (on_surface_factor) and that factor times |origin|^2.
+  __m256 on_surface_factor, on_surface_origin;
+  bool any_on_surface_test;  ///< whether some lane's factor is not 0
 
   explicit RayLanes(const Ray& ray)
-      : ox(_mm256_set1_ps(ray.origin.x)),
-        oy(_mm256_set1_ps(ray.origin.y)),
-        oz(_mm256_set1_ps(ray.origin.z)),
-        dx(_mm256_set1_ps(ray.direction.x)),
-        dy(_mm256_set1_ps(ray.direction.y)),
-        dz(_mm256_set1_ps(ray.direction.z)),
-        t_min(_mm256_set1_ps(ray.t_min)),
-        origin_sphere(_mm256_set1_epi32(static_cast<int>(ray.origin_sphere))) {}
+      : RayLanes(_mm256_set1_ps(ray.origin.x), _mm256_set1_ps(ray.origin.y),
+                 _mm256_set1_ps(ray.origin.z), _mm256_set1_ps(ray.direction.x),
+                 _mm256_set1_ps(ray.direction.y), _mm256_set1_ps(ray.direction.z),
+                 _mm256_set1_ps(ray.t_min),
+                 _mm256_set1_epi32(static_cast<int>(ray.origin_sphere))) {}
   /// A ray per lane (see ray_batch_kernel.hpp).
   RayLanes(__m256 ox_lanes, __m256 oy_lanes, __m256 oz_lanes, __m256 dx_lanes, __m256 dy_lanes,
            __m256 dz_lanes, __m256 t_min_lanes, __m256i origin_sphere_lanes)
@@ -178,7 +237,18 @@ struct RayLanes {
         dy(dy_lanes),
         dz(dz_lanes),
         t_min(t_min_lanes),
-        origin_sphere(origin_sphere_lanes) {}
+        origin_sphere(origin_sphere_lanes) {
+    // on_surface_factor, lane by lane, from the same lanes whether broadcast or not, so that a
+    // ray gets the same verdicts in both kernels.
+    const __m256 leaves_sphere =
+        _mm256_andnot_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(
+                             origin_sphere, _mm256_set1_epi32(static_cast<int>(kNoSphere)))),
+                         _mm256_cmp_ps(t_min, _mm256_setzero_ps(), _CMP_LE_OQ));
+    on_surface_factor = _mm256_and_ps(leaves_sphere, _mm256_set1_ps(kOnSurfaceFactor));
+    on_surface_origin = _mm256_mul_ps(
+        on_surface_factor, _mm256_fmadd_ps(ox, ox, _mm256_fmadd_ps(oy, oy, _mm256_mul_ps(oz, oz))));
+    any_on_surface_test = _mm256_movemask_ps(leaves_sphere) != 0;
+  }
 };
 
 /// A sphere given by its centre in each lane: eight of a SphereColumns (load_lanes), or one
@@ -226,17 +296,23 @@ struct HitLanes {
   HitLanes(__m256 t_lanes, __m256i sphere_lanes) : t(t_lanes), sphere(sphere_lanes) {}
 };
 
-/// The first root past t_min in each lane from the quadratic's b = f.d, c = |f|^2 - r^2 and
-/// discriminant; false when no lane can have a root ahead of the ray (see first_roots).
+/// For the ray and sphere of each lane, from the quadratic's b, c and discriminant: in `ahead`
+/// whether the ray meets the sphere past t_min, and in `t` where (the near root, or the far one
+/// from inside; 0 for an origin on the sphere, see test_sphere). `radius_squared` and
+/// `extent_squared()` (s^2) are what the on-surface test needs, the latter asked for only when
+/// some lane may be on a surface. Returns false, leaving both unset, when no lane can have a
+/// root ahead of its ray.
+template <class ExtentSquared>
 inline bool first_roots_from(const RayLanes& ray, __m256 b, __m256 c, __m256 discriminant,
-                             __m256& t, __m256& has_roots) {
+                             __m256 radius_squared, ExtentSquared&& extent_squared, __m256& t,
+                             __m256& ahead) {
   const __m256 zero = _mm256_setzero_ps();
-  has_roots = _mm256_cmp_ps(discriminant, zero, _CMP_GE_OQ);
+  const __m256 has_roots = _mm256_cmp_ps(discriminant, zero, _CMP_GE_OQ);
   // The roots sum to -2b and multiply to c: from outside (c > 0) a sphere behind the origin
   // (b > 0) has no root ahead. Most groups hold only such spheres and misses, and skip the
-  // square root and the division.
-  const __m256 ahead_or_inside =
-      _mm256_or_ps(_mm256_cmp_ps(b, zero, _CMP_LT_OQ), _mm256_cmp_ps(c, zero, _CMP_LE_OQ));
+  // square root and the division. (An origin on the surface has a root ahead only if b < 0.)
+  const __m256 b_negative = _mm256_cmp_ps(b, zero, _CMP_LT_OQ);
+  const __m256 ahead_or_inside = _mm256_or_ps(b_negative, _mm256_cmp_ps(c, zero, _CMP_LE_OQ));
   if (_mm256_movemask_ps(_mm256_and_ps(has_roots, ahead_or_inside)) == 0) return false;
   const __m256 sign_mask = _mm256_set1_ps(-0.0f);
   const __m256 root = _mm256_sqrt_ps(_mm256_max_ps(discriminant, zero));
@@ -247,14 +323,23 @@ inline bool first_roots_from(const RayLanes& ray, __m256 b, __m256 c, __m256 dis
   const __m256 t_near = _mm256_min_ps(t0, q);
   const __m256 t_far = _mm256_max_ps(t0, q);
   t = _mm256_blendv_ps(t_far, t_near, _mm256_cmp_ps(t_near, ray.t_min, _CMP_GT_OQ));
+  ahead = _mm256_and_ps(has_roots, _mm256_cmp_ps(t, ray.t_min, _CMP_GT_OQ));
+  if (ray.any_on_surface_test) {
+    const __m256 tolerance = _mm256_mul_ps(
+        radius_squared,
+        _mm256_fmadd_ps(ray.on_surface_factor, extent_squared(), ray.on_surface_origin));
+    const __m256 on_surface =
+        _mm256_and_ps(has_roots, _mm256_cmp_ps(_mm256_mul_ps(c, c), tolerance, _CMP_LT_OQ));
+    t = _mm256_andnot_ps(on_surface, t);
+    ahead = _mm256_blendv_ps(ahead, b_negative, on_surface);
+  }
   return true;
 }
 
-/// For the ray and sphere of each lane: the first root past t_min (the near root, or the far
-/// one from inside), and in `has_roots` whether the ray meets the sphere at all. Returns
-/// false, leaving both unset, when no lane can have a root ahead of its ray.
-inline bool first_roots(const RayLanes& ray, const SphereLanes& sphere, __m256& t,
-                        __m256& has_roots) {
+/// For the ray and sphere of each lane: in `ahead` whether the ray meets the sphere past t_min
+/// (or on its origin, see test_sphere), and in `t` where. Returns false, leaving both unset, when
+/// no lane can have a root ahead of its ray.
+inline bool first_roots(const RayLanes& ray, const SphereLanes& sphere, __m256& t, __m256& ahead) {
   const __m256 fx = _mm256_sub_ps(ray.ox, sphere.cx);
   const __m256 fy = _mm256_sub_ps(ray.oy, sphere.cy);
   const __m256 fz = _mm256_sub_ps(ray.oz, sphere.cz);
@@ -268,13 +353,14 @@ inline bool first_roots(const RayLanes& ray, const SphereLanes& sphere, __m256& 
   const __m256 discriminant = _mm256_sub_ps(r2, perp2);
   const __m256 c =
       _mm256_sub_ps(_mm256_fmadd_ps(fx, fx, _mm256_fmadd_ps(fy, fy, _mm256_mul_ps(fz, fz))), r2);
-  return first_roots_from(ray, b, c, discriminant, t, has_roots);
+  return first_roots_from(
+      ray, b, c, discriminant, r2, [&] { return r2; }, t, ahead);
 }
 
 /// first_roots for anchored spheres: intersect_anchored_sphere, eight at a time, with the
 /// accurate form of the discriminant in each lane.
 inline bool first_roots(const RayLanes& ray, const AnchoredLanes& sphere, __m256& t,
-                        __m256& has_roots) {
+                        __m256& ahead) {
   const __m256 gx = _mm256_sub_ps(ray.ox, sphere.ax);
   const __m256 gy = _mm256_sub_ps(ray.oy, sphere.ay);
   const __m256 gz = _mm256_sub_ps(ray.oz, sphere.az);
@@ -304,7 +390,10 @@ inline bool first_roots(const RayLanes& ray, const AnchoredLanes& sphere, __m256
     const __m256 perp2 = _mm256_fmadd_ps(px, px, _mm256_fmadd_ps(py, py, _mm256_mul_ps(pz, pz)));
     discriminant = _mm256_blendv_ps(_mm256_sub_ps(r2, perp2), near_form, near);
   }
-  return first_roots_from(ray, b, c, discriminant, t, has_roots);
+  const auto from_anchor_squared = [&] {
+    return _mm256_fmadd_ps(gx, gx, _mm256_fmadd_ps(gy, gy, _mm256_mul_ps(gz, gz)));
+  };
+  return first_roots_from(ray, b, c, discriminant, r2, from_anchor_squared, t, ahead);
 }
 
 /// comes_before, lane by lane (sphere ids compare unsigned, as std::uint32_t do).
@@ -319,14 +408,13 @@ inline __m256 comes_before(const HitLanes& a, const HitLanes& b) {
 /// best; returns the lanes whose best it changed (bit i for lane i).
 template <class Lanes>
 inline int test_lanes(const RayLanes& ray, const Lanes& spheres, __m256i ids, HitLanes& best) {
-  __m256 t, has_roots;
-  if (!first_roots(ray, spheres, t, has_roots)) return 0;
+  __m256 t, ahead;
+  if (!first_roots(ray, spheres, t, ahead)) return 0;
   const HitLanes candidate(t, ids);
   const __m256 is_origin_sphere =
       _mm256_castsi256_ps(_mm256_cmpeq_epi32(candidate.sphere, ray.origin_sphere));
-  const __m256 wins = _mm256_and_ps(
-      _mm256_andnot_ps(is_origin_sphere, has_roots),
-      _mm256_and_ps(_mm256_cmp_ps(t, ray.t_min, _CMP_GT_OQ), comes_before(candidate, best)));
+  const __m256 wins =
+      _mm256_and_ps(_mm256_andnot_ps(is_origin_sphere, ahead), comes_before(candidate, best));
   const int won = _mm256_movemask_ps(wins);
   if (won == 0) return 0;
   best.t = _mm256_blendv_ps(best.t, candidate.t, wins);
