@@ -83,6 +83,16 @@ void put32(std::vector<char>& bytes, std::size_t at, std::uint32_t v) {
 // Offsets in the sample checkpoint (variant "report", 6 bytes).
 constexpr std::size_t kVersionAt = 8, kNameSizeAt = 20, kWidthAt = 30, kPassesAt = 62, kSumsAt = 70;
 
+/// The message with which read_checkpoint refuses `path`, or "" if it reads it.
+std::string refusal(const fs::path& path) {
+  try {
+    glint::read_checkpoint(path);
+  } catch (const glint::CheckpointError& error) {
+    return std::string(error.what());
+  }
+  return std::string();
+}
+
 }  // namespace
 
 TEST_CASE("a checkpoint round trip keeps every field and every bit of the sums", "[checkpoint]") {
@@ -278,14 +288,6 @@ TEST_CASE("read_checkpoint reads a file, and refuses what is no checkpoint", "[c
     std::ofstream(dir / name, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
     return dir / name;
   };
-  const auto refusal = [](const fs::path& path) {
-    try {
-      glint::read_checkpoint(path);
-    } catch (const glint::CheckpointError& error) {
-      return std::string(error.what());
-    }
-    return std::string();
-  };
   const glint::Checkpoint c = sample_checkpoint();
   const std::vector<char> bytes = glint::encode_checkpoint(c);
   const glint::Checkpoint back = glint::read_checkpoint(write("good.ck", bytes));
@@ -321,14 +323,6 @@ TEST_CASE("read_checkpoint reads in pieces, and checks a header's size before al
   std::signal(SIGPIPE, SIG_IGN);
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const auto refusal = [](const fs::path& path) {
-    try {
-      glint::read_checkpoint(path);
-    } catch (const glint::CheckpointError& error) {
-      return std::string(error.what());
-    }
-    return std::string();
-  };
   // A checkpoint of more pixels than one piece of the reader (2^14), and sums of every kind.
   glint::RenderSettings settings;
   settings.width = 300;

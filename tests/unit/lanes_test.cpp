@@ -1,7 +1,7 @@
 // What AVX2 adds to the eight-lane width for the wavefront renderer (math/lanes.hpp): masks as
-// bits, transposes, the packing of lanes into queues, 64-bit lanes; and the lane-wise forms
-// that are not yet written once for every width (the samplers), against
-// their scalar forms lane by lane. What is written once is checked in wide_test.cpp.
+// bits, transposes, the packing of lanes into queues, 64-bit lanes; and the samplers' separate
+// eight-lane forms against their scalar forms, lane by lane. What is written once for every
+// width is checked in wide_test.cpp.
 
 #include <algorithm>
 #include <bit>
