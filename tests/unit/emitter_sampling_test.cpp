@@ -539,11 +539,12 @@ void check_heuristic_limits() {
 
 }  // namespace
 
-#if defined(GLINT_AVX2)
-TEST_CASE("emitter sampling: EmitterTable::choose_lanes chooses what choose does, lane by lane",
-          "[emitters][lanes]") {
+TEMPLATE_TEST_CASE_SIG(
+    "emitter sampling: EmitterTable::choose_lanes chooses what choose does, lane by lane",
+    "[emitters][lanes]", ((int W), W), 8, 16) {
   // Tables counted over (1, 7, 64 emitters) and searched (65, 300); each u is tried at the
   // cdf's steps and their neighbours, where a count and a search could disagree, and at random.
+  using F = glint::Float<W>;
   glint::Pcg32 rng(77u, 3u);
   for (const int size : {1, 7, 64, 65, 300}) {
     std::vector<SphereEmitter> emitters;
@@ -560,21 +561,25 @@ TEST_CASE("emitter sampling: EmitterTable::choose_lanes chooses what choose does
     }
     for (int i = 0; i < 256; ++i)
       us.push_back(rng.next_float());
-    while (us.size() % glint::kLaneCount != 0)
+    while (us.size() % W != 0)
       us.push_back(0.5f);
-    for (std::size_t base = 0; base < us.size(); base += glint::kLaneCount) {
-      glint::FloatLanes u;
-      for (int i = 0; i < glint::kLaneCount; ++i)
+    for (std::size_t base = 0; base < us.size(); base += W) {
+      F u;
+      for (int i = 0; i < W; ++i)
         u[i] = us[base + std::size_t(i)];
-      const glint::IntLanes chosen = table.choose_lanes(u);
-      for (int i = 0; i < glint::kLaneCount; ++i) {
+      const glint::EmitterLanes<F> chosen = table.choose_lanes(u);
+      for (int i = 0; i < W; ++i) {
         INFO(size << " emitters, u = " << u[i]);
-        CHECK(std::uint32_t(chosen[i]) == table.choose(u[i]).index);
+        const glint::EmitterTable::Choice c = table.choose(u[i]);
+        CHECK(chosen.sphere[i] == table[c.index].sphere);
+        CHECK(chosen.probability[i] == c.probability);
+        CHECK(chosen.radius[i] == table[c.index].radius);
+        CHECK(chosen.center.lane(i) == table[c.index].center);
+        CHECK(chosen.radiance.lane(i) == table[c.index].radiance);
       }
     }
   }
 }
-#endif
 
 TEST_CASE("emitter sampling: balance heuristic: weights of (a, b) and (b, a) sum to one",
           "[emitters]") {

@@ -34,7 +34,7 @@ Vec3 random_point(glint::Pcg32& rng, float half) {
   return {uniform(rng, -half, half), uniform(rng, -half, half), uniform(rng, -half, half)};
 }
 
-/// The shadow ray of PathContext::for_each_light_ray from `point` to `light`.
+/// The shadow ray of PathContext::light_rays from `point` to `light`.
 Ray shadow_ray(const Vec3& point, const Vec3& light, std::uint32_t sphere, const Vec3& normal) {
   const Vec3 to_light = light - point;
   const float distance = std::sqrt(glm::dot(to_light, to_light));
@@ -315,7 +315,8 @@ TEST_CASE("LightBuffer: blocks answers as the full scan for rays that end at the
   }
 }
 
-TEST_CASE("LightBuffer: ends_here takes the rays of for_each_light_ray only", "[light_buffer]") {
+TEST_CASE("LightBuffer: ends_here takes the rays of PathContext::light_rays only",
+          "[light_buffer]") {
   glint::SphereSet spheres;
   spheres.add(Vec3(5.0f, 0.0f, 0.0f), 1.0f, 0);
   const Vec3 light(0.0f, 10.0f, 0.0f);

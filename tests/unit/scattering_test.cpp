@@ -41,9 +41,11 @@ struct TopOfSphere {
     ray.origin = Vec3(0.0f, 0.0f, 1.0f) - incoming;
     ray.direction = incoming;
     const Vec3 normal(0.0f, 0.0f, 1.0f);
-    interaction = {{Vec3(0.0f, 0.0f, 1.0f), normal, normal, 0u},
-                   &surface,
-                   glint::detail::interface_at(ray, normal)};
+    interaction.point = Vec3(0.0f, 0.0f, 1.0f);
+    interaction.outward_normal = normal;
+    interaction.sphere = 0u;
+    glint::detail::set_surface_lane(interaction.surface, 0, surface);
+    interaction.at = glint::detail::interface_at(ray.direction, normal);
   }
 };
 

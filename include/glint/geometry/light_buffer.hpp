@@ -130,7 +130,7 @@ class LightBuffer {
   /// The lanes of `lanes` whose ray ends at the light: t_min at least 0, a direction of length
   /// 0.9 to 1.1 and
   /// t_max no more than the length the margins cover, and origin + t_max direction within the
-  /// endpoint tolerance of the light (a shadow ray of PathContext::for_each_light_ray, to
+  /// endpoint tolerance of the light (a shadow ray of PathContext::light_rays, to
   /// rounding). NaN in a lane fails every comparison, so that lane is not one of them.
   unsigned ends_here(const avx2::RayLanes& rays, __m256 t_max, unsigned lanes) const {
     const __m256 ex =
@@ -212,7 +212,7 @@ class LightBuffer {
   ///    perpendicular form, ray_sphere.hpp). The worst of two million rays aimed at spheres'
   ///    silhouettes (radii 1e-3 to 300, |f| up to 500) was 2^-21.6 (|f| + r); each sphere is
   ///    widened by 2^-15 (s + r), a hundred times that.
-  ///  - The endpoint: a shadow ray of for_each_light_ray ends within 2^-23.4 (|origin| +
+  ///  - The endpoint: a shadow ray of PathContext::light_rays ends within 2^-23.4 (|origin| +
   ///    |light|) of the light (the worst of five million); ends_here accepts 2^-18 s. A point
   ///    of the ray at least rho from the light then lies within asin(2^-18 s / rho) of the
   ///    direction back along the ray: spheres that come within rho = 2^-8 s of the light

@@ -206,11 +206,5 @@ using Vec2Lanes = Vector2<FloatLanes>;
 /// Eight 3-vectors, one per lane, in structure-of-arrays form.
 using Vec3Lanes = Vector3<FloatLanes>;
 
-/// glint::max_component lane by lane, with max_of's rule for NaN.
-inline FloatLanes max_component(const Vec3Lanes& v) {
-  const auto max_of = [](FloatLanes a, FloatLanes b) { return select(a > b, a, b); };
-  return max_of(v.x, max_of(v.y, v.z));
-}
-
 }  // namespace glint
 #endif  // GLINT_AVX2

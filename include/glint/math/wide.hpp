@@ -138,6 +138,12 @@ inline void store(S* to, const T& value) {
 
 // ---- masks ---------------------------------------------------------------------------------
 
+/// The mask of type M that is `value` in every lane (true is -1 in a wide lane).
+template <typename M>
+inline M mask_of(bool value) {
+  return splat<M>(value ? -1 : 0);
+}
+
 /// Whether any, or every, lane of a mask is true.
 inline bool any(bool mask) {
   return mask;
@@ -297,6 +303,30 @@ struct Vector3 {
   Vector3& operator+=(const Vector3& b) { return *this = *this + b; }
   Vector3& operator*=(const Vector3& b) { return *this = *this * b; }
 };
+
+/// Lane i of a vector (width 1: the vector).
+inline Vec3 lane(const Vec3& v, int) {
+  return v;
+}
+template <typename F>
+inline Vec3 lane(const Vector3<F>& v, int i) {
+  return v.lane(i);
+}
+inline void set_lane(Vec3& v, int, const Vec3& to) {
+  v = to;
+}
+template <typename F>
+inline void set_lane(Vector3<F>& v, int i, const Vec3& to) {
+  v.set_lane(i, to);
+}
+
+/// glint::max_component lane by lane (max_of's rule for NaN: the second unless the first is
+/// greater).
+template <typename F>
+inline F max_component(const Vector3<F>& v) {
+  const auto max_of = [](F a, F b) { return select(a > b, a, b); };
+  return max_of(v.x, max_of(v.y, v.z));
+}
 
 /// `v` in every lane of a Vec3 or Vector3 type V.
 template <typename V>

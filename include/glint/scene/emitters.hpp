@@ -10,7 +10,9 @@
 // contribution at the point (pbrt-v4's light BVH) would serve that case better.
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -90,6 +92,16 @@ inline BasicEmitterSample<FloatOf<V3>> sample_sphere_emitter(const V3& center, F
   }
   return sample;
 }
+
+/// Emitters chosen for a Float's lanes of shading points, with their probabilities.
+template <typename F>
+struct EmitterLanes {
+  Vec3For<F> center;
+  F radius;
+  Vec3For<F> radiance;
+  UIntFor<F> sphere;  ///< index of the sphere in the scene
+  F probability;      ///< of the choice
+};
 
 /// An emissive sphere. Its radiance leaves both sides of the surface, as every sphere's does.
 struct SphereEmitter {
@@ -180,31 +192,70 @@ class EmitterTable {
   /// The emitter for a uniform number u in [0, 1), and the probability of choosing it.
   /// Requires !empty().
   Choice choose(float u) const {
-    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-    const auto index = static_cast<std::uint32_t>(
-        std::min<std::ptrdiff_t>(it - cdf_.begin(), std::ptrdiff_t(cdf_.size()) - 1));
+    const auto index = std::uint32_t(choice_index(u));
     return {index, probability_[index]};
   }
 
+  /// The emitters chosen by each lane of `u`, and their probabilities (every lane's index is a
+  /// valid one, whatever its u). Requires !empty().
+  template <FloatType F>
+  EmitterLanes<F> choose_lanes(F u) const {
+    const IntFor<F> index = choice_index(u);
+    EmitterLanes<F> chosen;
+    if constexpr (kLanesOf<F> == 1) {
+      const SphereEmitter& e = emitters_[std::size_t(index)];
+      chosen = {e.center, e.radius, e.radiance, e.sphere, probability_[std::size_t(index)]};
 #if defined(GLINT_AVX2)
+    } else if constexpr (kLanesOf<F> == kLaneCount) {
+      // The chosen emitters' eight words (centre, radius, radiance, sphere) as one transpose.
+      static_assert(offsetof(SphereEmitter, center) == 0 && offsetof(SphereEmitter, radius) == 12 &&
+                    offsetof(SphereEmitter, radiance) == 16 &&
+                    offsetof(SphereEmitter, sphere) == 28 && sizeof(SphereEmitter) == 32);
+      const float* records[kLaneCount];
+      for (int i = 0; i < kLaneCount; ++i) {
+        records[i] = reinterpret_cast<const float*>(&emitters_[std::size_t(index[i])]);
+        chosen.probability[i] = probability_[std::size_t(index[i])];
+      }
+      FloatLanes words[kLaneCount];
+      load_columns(records, words);
+      chosen.center = {words[0], words[1], words[2]};
+      chosen.radius = words[3];
+      chosen.radiance = {words[4], words[5], words[6]};
+      chosen.sphere = std::bit_cast<UintLanes>(words[7]);
+#endif
+    } else {
+      for (int i = 0; i < kLanesOf<F>; ++i) {
+        const SphereEmitter& e = emitters_[std::size_t(index[i])];
+        chosen.center.set_lane(i, e.center);
+        chosen.radius[i] = e.radius;
+        chosen.radiance.set_lane(i, e.radiance);
+        chosen.sphere[i] = e.sphere;
+        chosen.probability[i] = probability_[std::size_t(index[i])];
+      }
+    }
+    return chosen;
+  }
+
   /// choose()'s index for each lane of `u`: the number of cumulative probabilities that u is
   /// not below, at most size() - 1, which is the place upper_bound finds. Counted over the
-  /// whole table up to kLinearChoices emitters, searched lane by lane beyond. Requires
-  /// !empty().
-  IntLanes choose_lanes(FloatLanes u) const {
+  /// whole table up to kLinearChoices emitters, searched lane by lane beyond.
+  template <FloatType F>
+  IntFor<F> choice_index(F u) const {
+    using I = IntFor<F>;
     const auto last = std::int32_t(cdf_.size()) - 1;
-    IntLanes index = broadcast(std::int32_t(0));
+    I index = splat<I>(0);
     if (cdf_.size() <= kLinearChoices) {
       for (const float step : cdf_)
-        index -= ~(u < step);  // a comparison is -1 where true, so this adds 1 where false
-      return select(index > last, broadcast(last), index);
+        index = select(u < step, index, index + 1);
+    } else {
+      for (int i = 0; i < kLanesOf<F>; ++i) {
+        const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), lane(u, i));
+        set_lane(index, i, std::int32_t(it - cdf_.begin()));
+      }
     }
-    for (int i = 0; i < kLaneCount; ++i)
-      index[i] = std::int32_t(choose(u[i]).index);
-    return index;
+    return select(index > last, splat<I>(last), index);
   }
   static constexpr std::size_t kLinearChoices = 64;
-#endif
 
   /// The probability that choose() gives emitter `index`.
   float probability(std::uint32_t index) const {

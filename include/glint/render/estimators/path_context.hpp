@@ -1,17 +1,19 @@
 #pragma once
-// What both estimators share: finding the next hit and setting it up for shading, gathering
-// the point lights there, sampling the emissive spheres and weighting the emission a bounce
-// finds (C::light_sampling), and the path termination policy. Units (see README): a point light
-// of intensity I (W/sr) at distance d gives irradiance I * colour * cos(theta) / d^2; a diffuse
-// lobe reflects diffuse * colour / pi of its irradiance as radiance.
+// What both estimators share: finding the next hit and setting it up for shading, the rays
+// towards the point lights there, sampling the emissive spheres and weighting the emission a
+// bounce finds (C::light_sampling), and the path termination policy. Written once over a Float
+// type (math/wide.hpp): one path at width 1, a Float's lanes of paths wider. Units (see
+// docs/library.md): a point light of intensity I (W/sr) at distance d gives irradiance
+// I * colour * cos(theta) / d^2; a diffuse lobe reflects diffuse * colour / pi of its
+// irradiance as radiance.
 
 #include <cmath>
 #include <cstdint>
 #include <optional>
-#include <type_traits>
 
 #include "glint/config.hpp"
 #include "glint/geometry/ray.hpp"
+#include "glint/math/wide.hpp"
 #include "glint/render/scattering.hpp"
 #include "glint/scene/scene.hpp"
 
@@ -23,27 +25,24 @@ struct TraceCounters {
   std::uint64_t invalid_samples = 0;  ///< NaN or infinite samples, dropped
 };
 
-/// How the ray that reached a hit was chosen, which light sampling needs to weigh the emission
-/// found there. (Where it started is the ray's own origin and origin sphere.)
-struct BounceOrigin {
-  /// Density of the ray's direction per unit solid angle; zero for a camera ray and for a
-  /// delta lobe, whose emission is not shared with light sampling (weight one).
-  float pdf = 0.0f;
+/// Where the light rays of a shading step go: traced at once (TracedLight) or queued for a
+/// batched trace (the wavefront renderer). shadow_rays: rays towards point lights, bringing
+/// `irradiance` where nothing blocks them; emitter_rays: rays towards points sampled on
+/// emissive spheres, bringing `light` where the first sphere they meet is `emitter_sphere`.
+template <typename Q, typename F>
+concept LightRayQueue = requires(Q queue, MaskFor<F> lanes, const RayFor<F>& rays,
+                                 const Vec3For<F>& color, UIntFor<F> sphere) {
+  queue.shadow_rays(lanes, rays, color);
+  queue.emitter_rays(lanes, rays, sphere, color);
 };
 
-/// What the estimators carry instead of a BounceOrigin when C::light_sampling does not sample
-/// emitters: nothing.
-struct NoBounceOrigin {};
-
 /// The scene as an estimator sees it, with the policies of Config C that do not depend on
-/// how lobes are followed. Cheap to copy (a reference and two values).
+/// how lobes are followed. Cheap to copy (a reference and a few values).
 template <RenderConfig C>
 class PathContext {
  public:
   using SamplerType = typename C::sampler;
   static constexpr bool kSamplesEmitters = C::light_sampling::samples_emitters;
-  /// BounceOrigin when emitters are sampled, otherwise the empty NoBounceOrigin.
-  using Origin = std::conditional_t<kSamplesEmitters, BounceOrigin, NoBounceOrigin>;
 
   PathContext(const Scene& scene, int max_depth)
       : scene_(scene),
@@ -51,9 +50,9 @@ class PathContext {
         max_depth_(max_depth),
         has_emitters_(!scene.emitters().empty()) {}
 
-  // Finding the hit and setting it up are two steps, the set-up after the estimator's test for
-  // a miss: done in one function before that test, the same arithmetic is fused into
-  // multiply-adds differently once inlined, and the chain's images change in their last bits.
+  const Scene& scene() const { return scene_; }
+  const Color& background() const { return background_; }
+  int max_depth() const { return max_depth_; }
 
   /// The first sphere along `ray`, if any. Counts the ray.
   std::optional<SphereHit> closest_hit(const Ray& ray, TraceCounters& counters) const {
@@ -63,148 +62,175 @@ class PathContext {
 
   /// The hit `hit` of `ray`, set up for shading.
   SurfaceInteraction interaction(const Ray& ray, const SphereHit& hit) const {
-    const SurfaceHit surface_hit = scene_.surface_hit(ray, hit);
-    const SurfaceProperties& surface = scene_.surface(hit.sphere);
-    return {surface_hit, &surface, detail::interface_at(ray, surface_hit.outward_normal)};
+    return SurfaceInteraction::at_hit(scene_, ray.origin, ray.direction, hit.t, hit.sphere, true);
   }
 
-  /// The ray leaving the hit in `direction`.
-  static Ray continue_ray(const SurfaceInteraction& interaction, const Vec3& direction) {
-    return ray_leaving_sphere(interaction.hit.point, direction, interaction.hit.sphere,
-                              interaction.hit.outward_normal);
+  /// The rays leaving the hits in `direction`.
+  template <typename F>
+  static RayFor<F> continue_rays(const BasicSurfaceInteraction<F>& it,
+                                 const Vec3For<F>& direction) {
+    return rays_leaving_spheres(it.point, direction, it.sphere, it.outward_normal,
+                                splat<F>(kInfinity));
   }
 
-  /// Irradiance at the hit from all point lights, through hard shadows, on the side the ray
-  /// came from (lights behind it contribute nothing).
-  Color direct_irradiance(const SurfaceInteraction& interaction, TraceCounters& counters) const {
-    Color irradiance(0.0f);
-    for_each_light_ray(interaction, [&](const Ray& shadow_ray, const Color& light_irradiance) {
-      ++counters.rays;
-      if (!scene_.occluded(shadow_ray)) irradiance += light_irradiance;
-    });
-    return irradiance;
-  }
-
-  /// For each point light on the side the ray came from, in the scene's order: visit(shadow
-  /// ray, the irradiance the light gives where that ray is not blocked). direct_irradiance sums
-  /// them; a batched renderer queues the rays.
-  template <typename Visit>
-  void for_each_light_ray(const SurfaceInteraction& interaction, Visit&& visit) const {
-    const Vec3& point = interaction.hit.point;
-    const Vec3& facing_normal = interaction.at.facing_normal;
+  /// For each point light on the side each ray came from, in the scene's order, the shadow
+  /// rays of the lanes of `lanes` that it lights, with the irradiance it gives where they are
+  /// not blocked, to `queue.shadow_rays`.
+  template <typename F, typename Queue>
+  void light_rays(MaskFor<F> lanes, const BasicSurfaceInteraction<F>& it, Queue& queue,
+                  TraceCounters& counters) const {
+    using V3 = Vec3For<F>;
     for (const PointLight& light : scene_.lights()) {
-      const Vec3 to_light = light.position - point;
-      const float distance2 = glm::dot(to_light, to_light);
-      const float distance = std::sqrt(distance2);
-      const Vec3 direction = to_light / distance;
-      const float cosine = glm::dot(direction, facing_normal);
-      if (!(cosine > 0.0f)) continue;
-      visit(ray_leaving_sphere(point, direction, interaction.hit.sphere,
-                               interaction.hit.outward_normal, distance),
-            (light.intensity * cosine / distance2) * light.color);
+      const V3 to_light = splat_vector<V3>(light.position) - it.point;
+      const F distance2 = dot(to_light, to_light);
+      const F distance = sqrt(distance2);
+      const V3 direction = to_light / distance;
+      const F cosine = dot(direction, it.at.facing_normal);
+      const MaskFor<F> lit = lanes && cosine > 0.0f;
+      if (!any(lit)) continue;
+      counters.rays += count(lit);
+      queue.shadow_rays(
+          lit, rays_leaving_spheres(it.point, direction, it.sphere, it.outward_normal, distance),
+          ((light.intensity * cosine) / distance2) * splat_vector<V3>(light.color));
     }
   }
 
-  /// How a ray leaving by the lobe sampled as `sample` was chosen.
-  static BounceOrigin origin_of(const ScatterSample& sample) {
-    return {sample.delta ? 0.0f : sample.pdf};
+  /// The emission at the hits of `rays` (lanes of `lanes`), each reached by a bounce whose
+  /// direction had density `from_pdf` (zero for a camera ray or a delta lobe), with its MIS
+  /// weight: one unless light sampling could have chosen the same direction.
+  template <typename F>
+  Vec3For<F> weighted_emission(MaskFor<F> lanes, const RayFor<F>& rays, F t,
+                               const BasicSurfaceInteraction<F>& it, F from_pdf) const {
+    if constexpr (!kSamplesEmitters) {
+      return it.surface.emission;
+    } else {
+      const MaskFor<F> weighed = lanes && it.surface.emitter != kNotAnEmitter && from_pdf > 0.0f;
+      if (!any(weighed)) return it.surface.emission;
+      F weight = splat<F>(1.0f);
+      for (int i = 0; i < kLanesOf<F>; ++i)
+        if (lane(weighed, i))
+          set_lane(weight, i,
+                   emission_weight(lane(rays.origin, i), lane(rays.origin_sphere, i),
+                                   lane(rays.direction, i), lane(t, i), lane(it.outward_normal, i),
+                                   lane(it.surface.emitter, i), lane(from_pdf, i)));
+      return it.surface.emission * weight;
+    }
   }
 
-  /// The emission at `interaction`, reached by `ray` chosen as `origin`, with its MIS weight
-  /// (one for a camera ray or a delta lobe).
-  Color weighted_emission(const Ray& ray, const SphereHit& hit,
-                          const SurfaceInteraction& interaction, const BounceOrigin& origin) const {
-    const std::uint32_t index = interaction.surface->emitter;
-    if (index == kNotAnEmitter) return interaction.material().emission;
-    return interaction.material().emission * emission_weight(ray, hit, interaction, index, origin);
+  /// Light sampling at the hits of `lanes`: one emitter per lane, chosen by power, and a
+  /// direction towards it, reflected by `material`'s diffuse lobe and weighted against the
+  /// estimator's own bounce, whose density for a direction is `bounce_pdf(direction)`. One
+  /// next_1d and one next_2d per lane whenever the scene has emitters, none otherwise (so a
+  /// scene without emitters renders exactly as without light sampling). The rays that can
+  /// bring light go to `queue.emitter_rays`.
+  template <typename F, typename BouncePdf, typename Draws, typename Queue>
+  void emitter_rays(MaskFor<F> lanes, const BasicSurfaceInteraction<F>& it,
+                    const ReportMaterial<C, F>& material, BouncePdf&& bounce_pdf, Draws& draws,
+                    Queue& queue, TraceCounters& counters) const {
+    using V3 = Vec3For<F>;
+    using M = MaskFor<F>;
+    if (!has_emitters_) return;
+    const F u_choice = next_1d(draws, lanes);
+    const Vec2For<F> u = next_2d(draws, lanes);
+    const EmitterLanes<F> emitter = scene_.emitters().choose_lanes(u_choice);
+    // How each point sees its emitter (SphereEmitter::view_from): from its own surface only
+    // from inside; else from outside or inside. Lanes not sampled count as outside, so that
+    // they alone never make the area branch run.
+    const M on_emitter = emitter.sphere == it.sphere;
+    const V3 offset = it.point - emitter.center;
+    const M outside =
+        !lanes || (!on_emitter && dot(offset, offset) > emitter.radius * emitter.radius);
+    const M none = on_emitter && !it.at.from_inside;
+    const BasicEmitterSample<F> sample =
+        sample_sphere_emitter(emitter.center, emitter.radius, it.point, outside, none, u);
+    const V3 reflected = material.evaluate(sample.direction);
+    const M arrives = lanes && sample.valid && sample.pdf > 0.0f &&
+                      (reflected.x != 0.0f || reflected.y != 0.0f || reflected.z != 0.0f);
+    if (!any(arrives)) return;
+    const F light_pdf = emitter.probability * sample.pdf;
+    const F weight = C::light_sampling::light_weight(light_pdf, bounce_pdf(sample.direction));
+    counters.rays += count(arrives);
+    queue.emitter_rays(arrives, continue_rays(it, sample.direction), emitter.sphere,
+                       reflected * emitter.radiance * (weight / light_pdf));
   }
 
-  /// The MIS weight of the emission of emitter `index` at `interaction`.
-  float emission_weight(const Ray& ray, const SphereHit& hit, const SurfaceInteraction& interaction,
-                        std::uint32_t index, const BounceOrigin& origin) const {
-    if (!(origin.pdf > 0.0f)) return 1.0f;
+  /// Russian roulette for the lanes of `lanes` at `depth`: the lanes that go on, and in
+  /// `weight` the factor 1/p that keeps the estimate unbiased (1 where the policy does not
+  /// play). One next_1d per lane where it plays.
+  template <typename F, typename Draws>
+  MaskFor<F> roulette(MaskFor<F> lanes, IntFor<F> depth, F throughput, Draws& draws,
+                      F& weight) const {
+    weight = splat<F>(1.0f);
+    if constexpr (C::path_termination::uses_roulette) {
+      const F p = C::path_termination::continue_probability(depth, throughput);
+      const MaskFor<F> played = lanes && p < 1.0f;
+      if (any(played)) {
+        lanes = lanes && !(played && next_1d(draws, played) >= p);
+        weight = select(played, 1.0f / p, weight);
+      }
+    }
+    return lanes;
+  }
+
+ private:
+  /// The number of true lanes of a mask.
+  template <typename M>
+  static std::uint64_t count(M mask) {
+    std::uint64_t n = 0;
+    for (int i = 0; i < kLanesOf<M>; ++i)
+      n += lane(mask, i) ? 1 : 0;
+    return n;
+  }
+
+  /// The MIS weight of the emission of emitter `index`, met at distance `t` (outward normal
+  /// `normal` there) by a ray from `origin` (on sphere `origin_sphere`, if any) in `direction`,
+  /// chosen by a bounce with density `from_pdf` > 0.
+  float emission_weight(const Vec3& origin, std::uint32_t origin_sphere, const Vec3& direction,
+                        float t, const Vec3& normal, std::uint32_t index, float from_pdf) const {
     const SphereEmitter& emitter = scene_.emitters()[index];
     // The ray started on its origin sphere; if that is the emitter it hit, it left it inwards
     // (a ray leaving a sphere outwards cannot meet it again), so the point saw it from inside.
-    const EmitterView view = emitter.view_from(ray.origin, ray.origin_sphere, true);
+    const EmitterView view = emitter.view_from(origin, origin_sphere, true);
     const float light_pdf = scene_.emitters().probability(index) *
-                            emitter.direction_pdf(ray.origin, view, ray.direction, hit.t,
-                                                  interaction.hit.outward_normal);
-    return C::light_sampling::bounce_weight(origin.pdf, light_pdf);
+                            emitter.direction_pdf(origin, view, direction, t, normal);
+    return C::light_sampling::bounce_weight(from_pdf, light_pdf);
   }
 
-  /// Light from one emissive sphere reaching `interaction` and reflected by `material`'s
-  /// diffuse lobe, with its MIS weight; `bounce_pdf(direction)` is the density with which the
-  /// estimator's own bounce would have chosen that direction. One emitter, chosen by power;
-  /// one next_1d and one next_2d whenever the scene has emitters, none otherwise (so a scene
-  /// without emitters renders exactly as without light sampling).
-  template <typename BouncePdf>
-  Color sample_emitter(const SurfaceInteraction& interaction, const ReportMaterial<C>& material,
-                       BouncePdf&& bounce_pdf, SamplerType& sampler,
-                       TraceCounters& counters) const {
-    const std::optional<EmitterRay> sample =
-        emitter_ray(interaction, material, bounce_pdf, sampler);
-    if (!sample) return Color(0.0f);
-    const std::optional<SphereHit> hit = closest_hit(sample->ray, counters);
-    if (!hit || hit->sphere != sample->emitter_sphere) return Color(0.0f);
-    return sample->light;
-  }
-
-  /// A ray towards a point sampled on an emissive sphere, and the light it brings.
-  struct EmitterRay {
-    Ray ray;
-    /// The light arrives if the first sphere along the ray is this one: a shadow ray with the
-    /// emitter's distance as its end would have to beat the rounding of that distance.
-    std::uint32_t emitter_sphere;
-    Color light;  ///< what sample_emitter returns when it arrives
-  };
-
-  /// sample_emitter's sampling, without the visibility test: none if nothing can arrive.
-  /// Draws what sample_emitter draws.
-  template <typename BouncePdf>
-  std::optional<EmitterRay> emitter_ray(const SurfaceInteraction& interaction,
-                                        const ReportMaterial<C>& material, BouncePdf&& bounce_pdf,
-                                        SamplerType& sampler) const {
-    if (!has_emitters_) return std::nullopt;
-    const EmitterTable& emitters = scene_.emitters();
-    const float u_choice = sampler.next_1d();
-    const Vec2 u_direction = sampler.next_2d();
-    const EmitterTable::Choice choice = emitters.choose(u_choice);
-    const SphereEmitter& emitter = emitters[choice.index];
-    const EmitterView view = emitter.view_from(interaction.hit.point, interaction.hit.sphere,
-                                               interaction.at.from_inside);
-    const std::optional<EmitterDirection> sample =
-        emitter.sample_direction(interaction.hit.point, view, u_direction);
-    if (!sample || !(sample->pdf > 0.0f)) return std::nullopt;
-    const Color reflected = material.evaluate(sample->direction);
-    if (reflected == Color(0.0f)) return std::nullopt;
-    const float light_pdf = choice.probability * sample->pdf;
-    const float weight = C::light_sampling::light_weight(light_pdf, bounce_pdf(sample->direction));
-    return EmitterRay{continue_ray(interaction, sample->direction), emitter.sphere,
-                      reflected * emitter.radiance * (weight / light_pdf)};
-  }
-
-  /// Russian roulette: none if the path ends here, otherwise the weight 1/p that keeps the
-  /// estimate unbiased (1 when the policy does not play).
-  std::optional<float> roulette_weight(int depth, float throughput, SamplerType& sampler) const {
-    if constexpr (C::path_termination::uses_roulette) {
-      const float p = C::path_termination::continue_probability(depth, throughput);
-      if (p < 1.0f) {
-        if (sampler.next_1d() >= p) return std::nullopt;
-        return 1.0f / p;
-      }
-    }
-    return 1.0f;
-  }
-
-  const Color& background() const { return background_; }
-  int max_depth() const { return max_depth_; }
-
- private:
   const Scene& scene_;
   Color background_;
   int max_depth_;
   bool has_emitters_;
+};
+
+/// A LightRayQueue that traces each ray at once, for one path (width 1): the irradiance of
+/// the point lights whose shadow rays are not blocked, and the light of the emitter sample if
+/// it arrives.
+class TracedLight {
+ public:
+  explicit TracedLight(const Scene& scene) : scene_(scene) {}
+
+  void shadow_rays(bool lit, const Ray& ray, const Color& irradiance) {
+    if (lit && !scene_.occluded(ray)) irradiance_ += irradiance;
+  }
+  void emitter_rays(bool sampled, const Ray& ray, std::uint32_t emitter_sphere,
+                    const Color& light) {
+    if (!sampled) return;
+    const std::optional<SphereHit> hit = scene_.closest_hit(ray);
+    // A shadow ray with the emitter's distance as its end would have to beat the rounding of
+    // that distance: the light arrives where the first sphere along the ray is the emitter.
+    emitter_visible_ = hit && hit->sphere == emitter_sphere;
+    emitter_light_ = light;
+  }
+
+  const Color& irradiance() const { return irradiance_; }
+  bool emitter_visible() const { return emitter_visible_; }
+  const Color& emitter_light() const { return emitter_light_; }
+
+ private:
+  const Scene& scene_;
+  Color irradiance_{0.0f};
+  bool emitter_visible_ = false;
+  Color emitter_light_{0.0f};
 };
 
 }  // namespace glint

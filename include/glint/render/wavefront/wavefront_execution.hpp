@@ -7,18 +7,15 @@
 // finished paths and refill the batch with the next samples of the tile. This is the shape of
 // pbrt-v4's wavefront/ integrator and Mitsuba 3's wavefront mode, on a CPU thread's scale.
 //
-// Each path follows ChainEstimator (render/estimators/chain.hpp): the same draws from the same
-// sampler in the same order, and batched queries that answer exactly what the single-ray ones
-// do. Shading runs eight paths at a time (shade_lanes: the hit, the material, the light rays,
-// roulette and the next direction in SIMD lanes, and the sampler's starts and draws too where it
-// has a lane-wise form: LanewiseSampler, LanewiseSamplerStart) wherever the
-// configuration's policies have lane-wise forms (LanewisePolicies) and the build has AVX2;
-// otherwise path by path with ChainEstimator's own code (shade_path). The lane-wise arithmetic
-// is not the scalar code's to the last bit (a polynomial sin and cos, other multiply-adds), so
-// images differ from the scalar renderer's by rounding, and a path that grazes an edge may go
-// another way. A path's arithmetic never depends on the other paths of its batch, on its place
-// in the batch or on the thread, and a pixel's samples are added to its sum in index order:
-// the image is the same bit for bit whatever the thread count.
+// Each path follows ChainEstimator (render/estimators/chain.hpp), whose step() the shading
+// stage calls for kWidth paths at a time: eight in SIMD lanes where the build has AVX2 and the
+// configuration's policies have lane-wise forms (PoliciesAtWidth), else one. The light rays a
+// step asks for are queued and traced in batches, and what they bring is added by
+// ChainEstimator::add_light, as the scalar renderer does for one path: the same operations in
+// the same order at every width, so the wavefront gives the scalar renderer's image bit for
+// bit. A path's arithmetic never depends on the other paths of its batch, on its place in the
+// batch or on the thread, and a pixel's samples are added to its sum in index order: the image
+// is the same whatever the thread count.
 
 #include <algorithm>
 #include <atomic>
@@ -39,6 +36,7 @@
 #include "glint/math/lanes.hpp"
 #include "glint/math/sampling.hpp"
 #include "glint/render/camera.hpp"
+#include "glint/render/estimators/chain.hpp"
 #include "glint/render/estimators/path_context.hpp"
 #include "glint/render/render_settings.hpp"
 #include "glint/render/scattering.hpp"
@@ -68,21 +66,21 @@ template <typename C>
 concept WavefrontConfig =
     RenderConfig<C> && std::same_as<typename C::material_model, StochasticMaterialModel>;
 
-#if defined(GLINT_AVX2)
-/// Whether every policy the camera and shading stages call has a lane-wise form (eight values
-/// at once): then WavefrontExecution runs those stages eight paths at a time. A user's policy
-/// without one still renders, path by path. (The sphere shading is called lane by lane, and so
-/// is a sampler without a Lanes form: see LanewiseSampler.)
-template <typename C>
-concept LanewisePolicies = requires(Vec2Lanes u, FloatLanes value, IntLanes depth, float sigma) {
-  { C::antialiasing::offset(u, sigma) } -> std::same_as<Vec2Lanes>;
-  { C::diffuse_sampling::sample(u) } -> std::same_as<BasicDirectionSample<FloatLanes>>;
-  { C::diffuse_sampling::pdf(value) } -> std::same_as<FloatLanes>;
-  { C::fresnel::reflectance(value, value, value) } -> std::same_as<FloatLanes>;
-  { C::light_sampling::light_weight(value, value) } -> std::same_as<FloatLanes>;
-  { C::path_termination::continue_probability(depth, value) } -> std::same_as<FloatLanes>;
+/// Whether every policy the camera and shading stages call has a form for the lanes of a
+/// Float<W> (W paths at once): then WavefrontExecution runs those stages W paths at a time. A
+/// user's policy written for one path still renders, path by path. (The sphere shading is
+/// called lane by lane, and so is a sampler without a Lanes form: see LanewiseSampler.)
+template <typename C, int W>
+concept PoliciesAtWidth = requires(Vec2For<Float<W>> u, Float<W> value, Int<W> depth, float sigma) {
+  { C::antialiasing::offset(u, sigma) } -> std::same_as<Vec2For<Float<W>>>;
+  { C::diffuse_sampling::sample(u) } -> std::same_as<BasicDirectionSample<Float<W>>>;
+  { C::diffuse_sampling::pdf(value) } -> std::same_as<Float<W>>;
+  { C::fresnel::reflectance(value, value, value) } -> std::same_as<Float<W>>;
+  { C::light_sampling::light_weight(value, value) } -> std::same_as<Float<W>>;
+  { C::path_termination::continue_probability(depth, value) } -> std::same_as<Float<W>>;
 };
 
+#if defined(GLINT_AVX2)
 /// A sampler with a form that draws for eight paths at once, in SIMD lanes: S::Lanes, which
 /// loads and stores lane i from and to a sampler and draws for the lanes of a mask (the others
 /// keep their state). Without one, WavefrontExecution draws path by path.
@@ -196,20 +194,21 @@ class WavefrontExecution {
   static constexpr const char* kName = "wavefront";
   using SamplerType = typename C::sampler;
   using Context = PathContext<C>;
-  using Origin = typename Context::Origin;
   static constexpr bool kSamplesEmitters = Context::kSamplesEmitters;
 #if defined(GLINT_AVX2)
-  /// Whether the camera and shading stages run eight paths at a time (see LanewisePolicies).
-  static constexpr bool kUsesLanes = LanewisePolicies<C>;
+  /// Paths shaded at once: a SIMD register's lanes where every policy has a form for them.
+  static constexpr int kWidth = PoliciesAtWidth<C, kLaneCount> ? kLaneCount : 1;
   /// Whether the samplers are kept in their Lanes form (detail::PathSamplers).
-  static constexpr bool kSamplersInLanes = kUsesLanes && LanewiseSampler<SamplerType>;
+  static constexpr bool kSamplersInLanes = kWidth > 1 && LanewiseSampler<SamplerType>;
   /// Whether the camera stage starts eight samplers at once (LanewiseSamplerStart).
   static constexpr bool kStartsInLanes = kSamplersInLanes && LanewiseSamplerStart<SamplerType>;
 #else
-  static constexpr bool kUsesLanes = false;
+  static constexpr int kWidth = 1;
   static constexpr bool kSamplersInLanes = false;
   static constexpr bool kStartsInLanes = false;
 #endif
+  using Lanes = Float<kWidth>;
+  using LaneMaskType = Mask<kWidth>;
 
   /// Paths in flight per thread: enough that eight-ray batches stay full while paths end at
   /// different depths, few enough that the batch's state stays in the core's L2 cache.
@@ -223,7 +222,7 @@ class WavefrontExecution {
 
   WavefrontExecution(const Scene& scene, const RenderSettings& settings)
       : scene_(scene),
-        context_(scene, settings.max_depth),
+        estimator_(PathContext<C>(scene, settings.max_depth)),
         camera_(scene.camera(), settings.width, settings.height),
         settings_(settings) {}
 
@@ -242,18 +241,19 @@ class WavefrontExecution {
       y_[u] = c.y;
       z_[u] = c.z;
     }
-#if defined(GLINT_AVX2)
-    Vec3Lanes lanes(int base) const {
+    /// Paths base .. base + kLanesOf<F> - 1.
+    template <typename F = Lanes>
+    Vec3For<F> load(int base) const {
       const auto u = std::size_t(base);
-      return {load_lanes(&x_[u]), load_lanes(&y_[u]), load_lanes(&z_[u])};
+      return {glint::load<F>(&x_[u]), glint::load<F>(&y_[u]), glint::load<F>(&z_[u])};
     }
-    void set_lanes(int base, const Vec3Lanes& c) {
+    template <typename V3>
+    void store(int base, const V3& c) {
       const auto u = std::size_t(base);
-      store_lanes(&x_[u], c.x);
-      store_lanes(&y_[u], c.y);
-      store_lanes(&z_[u], c.z);
+      glint::store(&x_[u], c.x);
+      glint::store(&y_[u], c.y);
+      glint::store(&z_[u], c.z);
     }
-#endif
 
    private:
     detail::AlignedArray<float> x_, y_, z_;
@@ -269,7 +269,7 @@ class WavefrontExecution {
           radiance(kPaths),
           depth(kPaths),
           sample(kPaths),
-          from(kPaths),
+          from_pdf(kPaths),
           sampler(kPaths),
           shading_throughput(kPaths),
           albedo(kPaths),
@@ -296,18 +296,18 @@ class WavefrontExecution {
     ColorColumns throughput;
     ColorColumns radiance;
     detail::AlignedArray<std::int32_t> depth;
-    std::vector<std::uint64_t> sample;  ///< the path's sample, numbered within the tile's work
-    std::vector<Origin> from;
+    std::vector<std::uint64_t> sample;     ///< the path's sample, numbered within the tile's work
+    detail::AlignedArray<float> from_pdf;  ///< PathLanes::from_pdf
     detail::PathSamplers<SamplerType, kSamplersInLanes> sampler;
 
-    // What the current bounce waits for: light that the queued rays may bring, added once they
-    // are traced, in ChainEstimator's order (point lights, then the emitter sample).
+    // What the current bounce waits for (PendingLight): light that the queued rays may bring,
+    // added by ChainEstimator::add_light once they are traced.
     ColorColumns shading_throughput;  ///< the throughput at the hit
     ColorColumns albedo;
     ColorColumns irradiance;
     ColorColumns emitter_light;
     // A lane of SIMD flags per path: eight paths' flags load and store as one register.
-    detail::AlignedArray<std::int32_t> pending;  ///< kDirectLight | kEmitterRay | kEmitterVisible
+    detail::AlignedArray<std::int32_t> pending;  ///< kDirectLight | kEmitterVisible
     detail::AlignedArray<std::int32_t> ends;     ///< 1: the path ends after this bounce
 
     // The queues of rays to trace, and for each ray its path and what it brings. The arrays
@@ -356,7 +356,7 @@ class WavefrontExecution {
   }
 
  private:
-  static constexpr std::int32_t kDirectLight = 1, kEmitterRay = 2, kEmitterVisible = 4;
+  static constexpr std::int32_t kDirectLight = 1, kEmitterVisible = 2;
 
   using PieceLayout = detail::PieceLayout;
 
@@ -376,102 +376,139 @@ class WavefrontExecution {
   }
 
   /// Paths first .. last-1 start their samples (state.sample): the camera rays through their
-  /// points of the pixels, as ScalarExecution::add_samples makes them.
+  /// points of the pixels, as ScalarExecution::add_samples makes them, kWidth at a time.
   GLINT_STAGE void start_paths(ThreadState& state, int first, int last,
                                const PieceLayout& piece) const {
-    if (first == last) return;
-#if defined(GLINT_AVX2)
-    if constexpr (kUsesLanes) {
-      const int width = RayBatch::kWidth;
-      for (int base = first - first % width; base < last; base += width) {
-        const LaneMask lanes = lanes_below(last - base) & ~lanes_below(std::max(0, first - base));
-        start_lanes(state, base, lanes, piece);
-      }
-    } else
-#endif
-    {
-      for (int p = first; p < last; ++p)
-        start_path(state, p, piece);
-    }
+    for (int base = first - first % kWidth; base < last; base += kWidth)
+      start_block(state, base, lanes_between(base, first, last), piece);
   }
 
-  /// Path p starts sample state.sample[p].
-  GLINT_FLATTEN void start_path(ThreadState& state, int p, const PieceLayout& piece) const {
-    const auto u = std::size_t(p);
-    Vec2 film = start_sample(state, u, piece);
-    if constexpr (C::antialiasing::enabled)
-      film += C::antialiasing::offset(state.sampler[p].next_2d(), settings_.antialias_sigma);
-    set_ray(state, p, camera_.ray_through(film));
-    state.throughput.set(p, Color(1.0f));
-    state.radiance.set(p, Color(0.0f));
-  }
-
-  /// Path p's sampler starts on state.sample[p], at depth 0 from the camera; returns the centre
-  /// of the sample's pixel on the film.
-  Vec2 start_sample(ThreadState& state, std::size_t p, const PieceLayout& piece) const {
-    const std::uint64_t n = state.sample[p];
-    const int x = piece.x(n);
-    const int y = piece.y(n);
-    SamplerType sampler;
-    sampler.start(PixelSample{std::uint32_t(x), std::uint32_t(y), piece.index(n),
-                              std::uint32_t(settings_.samples_per_pixel), settings_.seed});
-    state.sampler.set(int(p), sampler);
-    state.depth[p] = 0;
-    state.from[p] = Origin{};
-    return Vec2(float(x) + 0.5f, float(y) + 0.5f);
-  }
-
-#if defined(GLINT_AVX2)
-  /// start_path for the lanes of `lanes` of paths base .. base+7: the samplers at once where
-  /// they can be (kStartsInLanes), else lane by lane; the filter offset and the camera rays in
-  /// SIMD lanes.
-  GLINT_FLATTEN void start_lanes(ThreadState& state, int base, LaneMask lanes,
+  /// Paths base .. base + kWidth - 1 of `lanes` start their samples: the samplers at once where
+  /// they can be (kStartsInLanes), else one by one; the filter offsets and the camera rays at
+  /// the shading width.
+  GLINT_FLATTEN void start_block(ThreadState& state, int base, LaneMaskType lanes,
                                  const PieceLayout& piece) const {
-    const IntLanes mask = lanes_of_bits(lanes);
-    Vec2Lanes film{};
+    Vec2For<Lanes> film{};
+#if defined(GLINT_AVX2)
     if constexpr (kStartsInLanes) {
       PixelSampleLanes sample{.samples_per_pixel = std::uint32_t(settings_.samples_per_pixel),
                               .seed = settings_.seed};
       piece.lanes(&state.sample[std::size_t(base)], sample);
-      state.sampler.block(base).start(mask, sample);
-      std::int32_t* depth = &state.depth[std::size_t(base)];
-      store_lanes(depth, select(mask, broadcast(0), load_lanes(depth)));
-      if constexpr (kSamplesEmitters) {
-        // As in shade_lanes: the eight paths' BounceOrigins as one register.
-        static_assert(sizeof(Origin) == sizeof(float) && std::is_trivially_copyable_v<Origin>);
-        FloatLanes from;
-        std::memcpy(&from, &state.from[std::size_t(base)], sizeof from);
-        from = select(mask, broadcast(std::bit_cast<float>(Origin{})), from);
-        std::memcpy(static_cast<void*>(&state.from[std::size_t(base)]), &from, sizeof from);
-      }
-      // start_sample's float(x) + 0.5f: the same two roundings in SIMD lanes.
-      film = {__builtin_convertvector(std::bit_cast<IntLanes>(sample.x), FloatLanes) + 0.5f,
-              __builtin_convertvector(std::bit_cast<IntLanes>(sample.y), FloatLanes) + 0.5f};
-    } else {
-      for_each_lane(lanes, [&](int i) {
-        const Vec2 centre = start_sample(state, std::size_t(base + i), piece);
-        film.x[i] = centre.x;
-        film.y[i] = centre.y;
-      });
+      state.sampler.block(base).start(lanes, sample);
+      // The pixel's centre, float(x) + 0.5f, as for one path.
+      film = {to_float(std::bit_cast<IntLanes>(sample.x)) + 0.5f,
+              to_float(std::bit_cast<IntLanes>(sample.y)) + 0.5f};
+    } else
+#endif
+    {
+      for (int i = 0; i < kWidth; ++i)
+        if (lane(lanes, i)) {
+          const std::uint64_t n = state.sample[std::size_t(base + i)];
+          const int x = piece.x(n);
+          const int y = piece.y(n);
+          SamplerType sampler;
+          sampler.start(PixelSample{std::uint32_t(x), std::uint32_t(y), piece.index(n),
+                                    std::uint32_t(settings_.samples_per_pixel), settings_.seed});
+          state.sampler.set(base + i, sampler);
+          set_lane(film.x, i, float(x) + 0.5f);
+          set_lane(film.y, i, float(y) + 0.5f);
+        }
     }
     if constexpr (C::antialiasing::enabled) {
-      const Vec2Lanes u = SamplerBlock(state.sampler, base).next_2d(lanes);
-      const Vec2Lanes offset = C::antialiasing::offset(u, settings_.antialias_sigma);
-      film = {film.x + offset.x, film.y + offset.y};
+      auto&& draws = draws_of(state, base);
+      const Vec2For<Lanes> offset =
+          C::antialiasing::offset(next_2d(draws, lanes), settings_.antialias_sigma);
+      film.x = film.x + offset.x;
+      film.y = film.y + offset.y;
     }
-    RayLanes ray;
-    ray.origin = Vec3Lanes::broadcast(camera_.position());
-    camera_.rays_through(film, ray.direction, ray.t_min);
-    ray.t_max = broadcast(kInfinity);
-    ray.origin_sphere = broadcast(std::int32_t(kNoSphere));
-    ray.heads_into_origin_sphere = broadcast(0);
-    set_rays(state.rays[std::size_t(base / RayBatch::kWidth)], mask, ray);
-    state.throughput.set_lanes(
-        base, select(mask, Vec3Lanes::broadcast(Color(1.0f)), state.throughput.lanes(base)));
-    state.radiance.set_lanes(
-        base, select(mask, Vec3Lanes::broadcast(Color(0.0f)), state.radiance.lanes(base)));
+    PathLanes<Lanes> path;
+    path.ray.origin = splat_vector<Vec3For<Lanes>>(camera_.position());
+    camera_.rays_through(film, path.ray.direction, path.ray.t_min);
+    path.ray.t_max = splat<Lanes>(kInfinity);
+    path.ray.origin_sphere = splat<UIntFor<Lanes>>(kNoSphere);
+    path.ray.heads_into_origin_sphere = mask_of<LaneMaskType>(false);
+    path.throughput = splat_vector<Vec3For<Lanes>>(Color(1.0f));
+    path.radiance = splat_vector<Vec3For<Lanes>>(Color(0.0f));
+    path.depth = splat<IntFor<Lanes>>(0);
+    path.from_pdf = splat<Lanes>(0.0f);
+    store_paths(state, base, lanes, path);
   }
+
+  /// The lanes of block `base` that hold paths first .. last-1.
+  static LaneMaskType lanes_between(int base, int first, int last) {
+    LaneMaskType lanes = mask_of<LaneMaskType>(false);
+    for (int i = 0; i < kWidth; ++i)
+      set_lane(lanes, i, base + i >= first && base + i < last ? -1 : 0);
+    return lanes;
+  }
+
+  /// The state of paths base .. base + kWidth - 1 between bounces.
+  static PathLanes<Lanes> load_paths(const ThreadState& state, int base) {
+    using U = UIntFor<Lanes>;
+    const RayBatch& rays = state.rays[std::size_t(base / RayBatch::kWidth)];
+    const int at = base % RayBatch::kWidth;
+    PathLanes<Lanes> path;
+    path.ray.origin = {load<Lanes>(&rays.origin_x[at]), load<Lanes>(&rays.origin_y[at]),
+                       load<Lanes>(&rays.origin_z[at])};
+    path.ray.direction = {load<Lanes>(&rays.direction_x[at]), load<Lanes>(&rays.direction_y[at]),
+                          load<Lanes>(&rays.direction_z[at])};
+    path.ray.t_min = load<Lanes>(&rays.t_min[at]);
+    path.ray.t_max = load<Lanes>(&rays.t_max[at]);
+    path.ray.origin_sphere = load<U>(&rays.origin_sphere[at]);
+    path.ray.heads_into_origin_sphere = mask_of_bits(rays.heads_into_origin_sphere >> at);
+    path.throughput = state.throughput.load(base);
+    path.radiance = state.radiance.load(base);
+    path.depth = load<IntFor<Lanes>>(&state.depth[std::size_t(base)]);
+    path.from_pdf = load<Lanes>(&state.from_pdf[std::size_t(base)]);
+    return path;
+  }
+
+  /// Stores the lanes of `lanes` of `path` as paths base .. base + kWidth - 1.
+  static void store_paths(ThreadState& state, int base, LaneMaskType lanes,
+                          const PathLanes<Lanes>& path) {
+    RayBatch& rays = state.rays[std::size_t(base / RayBatch::kWidth)];
+    const int at = base % RayBatch::kWidth;
+    const auto update = [&](auto* column, auto value) {
+      store(column, select(lanes, value, load<decltype(value)>(column)));
+    };
+    update(&rays.origin_x[at], path.ray.origin.x);
+    update(&rays.origin_y[at], path.ray.origin.y);
+    update(&rays.origin_z[at], path.ray.origin.z);
+    update(&rays.direction_x[at], path.ray.direction.x);
+    update(&rays.direction_y[at], path.ray.direction.y);
+    update(&rays.direction_z[at], path.ray.direction.z);
+    update(&rays.t_min[at], path.ray.t_min);
+    update(&rays.t_max[at], path.ray.t_max);
+    update(&rays.origin_sphere[at], path.ray.origin_sphere);
+    const LaneMask bits = bits_of_mask(lanes) << at;
+    rays.heads_into_origin_sphere =
+        (rays.heads_into_origin_sphere & ~bits) |
+        ((bits_of_mask(path.ray.heads_into_origin_sphere) << at) & bits);
+    state.throughput.store(base, select(lanes, path.throughput, state.throughput.load(base)));
+    state.radiance.store(base, select(lanes, path.radiance, state.radiance.load(base)));
+    update(&state.depth[std::size_t(base)], path.depth);
+    update(&state.from_pdf[std::size_t(base)], path.from_pdf);
+  }
+
+  /// A mask's lanes as bits (bit i: lane i), and back from the low kWidth bits.
+  static LaneMask bits_of_mask(LaneMaskType mask) {
+    if constexpr (kWidth == 1) {
+      return mask ? 1u : 0u;
+    } else {
+#if defined(GLINT_AVX2)
+      return lane_bits(mask);
 #endif
+    }
+  }
+  static LaneMaskType mask_of_bits(LaneMask bits) {
+    if constexpr (kWidth == 1) {
+      return (bits & 1u) != 0;
+    } else {
+#if defined(GLINT_AVX2)
+      return lanes_of_bits(bits & RayBatch::kAllLanes);
+#endif
+    }
+  }
 
   GLINT_STAGE void trace_closest_hits(ThreadState& state, int live, TraceCounters& counters) const {
     counters.rays += std::uint64_t(live);
@@ -482,454 +519,113 @@ class WavefrontExecution {
   }
 
   GLINT_STAGE void shade(ThreadState& state, int live, TraceCounters& counters) const {
-    if constexpr (kUsesLanes) {
-      for (int base = 0; base < live; base += RayBatch::kWidth)
-        shade_lanes(state, base, lanes_below(live - base), counters);
-    } else {
-      for (int p = 0; p < live; ++p)
-        shade_path(state, p, counters);
-    }
+    for (int base = 0; base < live; base += kWidth)
+      shade_block(state, base, lanes_between(base, 0, live), counters);
   }
 
-  /// ChainEstimator's loop body for path p at the hit its ray found, up to the rays it needs
-  /// traced: their light is added by gather_and_retire.
-  GLINT_FLATTEN void shade_path(ThreadState& state, int p, TraceCounters& counters) const {
-    const auto u = std::size_t(p);
-    state.pending[u] = 0;
-    state.ends[u] = 1;
-    const SphereHit hit = hit_of(state, p);
-    Color radiance = state.radiance.get(p);
-    const Color throughput = state.throughput.get(p);
-    if (hit.sphere == kNoSphere) {
-      radiance += throughput * context_.background();
-      state.radiance.set(p, radiance);
-      return;
-    }
-    const Ray ray = ray_of(state, p);
-    const SurfaceInteraction interaction = context_.interaction(ray, hit);
-    if constexpr (kSamplesEmitters)
-      radiance += throughput * context_.weighted_emission(ray, hit, interaction, state.from[u]);
-    else
-      radiance += throughput * interaction.material().emission;
-    state.radiance.set(p, radiance);
-    const ReportMaterial<C> material(interaction, ray.direction);
-    SamplerType& sampler = state.sampler[p];
-    const int depth = state.depth[u];
-    state.shading_throughput.set(p, throughput);
-    if (material.has_lobe(Lobe::diffuse)) {
-      state.pending[u] = kDirectLight;
-      state.albedo.set(p, material.albedo());
-      state.irradiance.set(p, Color(0.0f));
-      context_.for_each_light_ray(interaction, [&](const Ray& shadow_ray, const Color& light) {
-        ++counters.rays;
-        queue_shadow_ray(state, p, shadow_ray, light);
-      });
-      if constexpr (kSamplesEmitters)
-        if (depth < context_.max_depth()) {
-          state.pending[u] |= kEmitterRay;
-          state.emitter_light.set(p, Color(0.0f));
-          const std::optional<typename Context::EmitterRay> emitter = context_.emitter_ray(
-              interaction, material, [&](const Vec3& direction) { return material.pdf(direction); },
-              sampler);
-          if (emitter) {
-            ++counters.rays;
-            state.emitter_light.set(p, emitter->light);
-            queue_emitter_ray(state, p, emitter->ray, emitter->emitter_sphere);
-          }
-        }
-    }
-    if (depth >= context_.max_depth() || !material.scatters()) return;
-    const std::optional<float> continuation =
-        context_.roulette_weight(depth, max_component(throughput), sampler);
-    if (!continuation) return;
-
-    const ScatterSample next = material.sample(sampler);
-    if constexpr (kSamplesEmitters) state.from[u] = Context::origin_of(next);
-    set_ray(state, p, Context::continue_ray(interaction, next.direction));
-    state.throughput.set(p, throughput * (next.tint * (next.factor * *continuation)));
-    state.depth[u] = depth + 1;
-    state.ends[u] = 0;
+  /// ChainEstimator::step for paths base .. base + kWidth - 1 of `lanes` at the hits their
+  /// rays found, its light rays queued: their light is added by gather_and_retire.
+  GLINT_FLATTEN void shade_block(ThreadState& state, int base, LaneMaskType lanes,
+                                 TraceCounters& counters) const {
+    const HitBatch& hits = state.hits[std::size_t(base / RayBatch::kWidth)];
+    const int at = base % RayBatch::kWidth;
+    PathLanes<Lanes> path = load_paths(state, base);
+    PendingLight<Lanes> pending{};
+    LightQueue queue{*this, state, base};
+    auto&& draws = draws_of(state, base);
+    const LaneMaskType going_on =
+        estimator_.step(lanes, path, load<Lanes>(&hits.t[at]),
+                        load<UIntFor<Lanes>>(&hits.sphere[at]), draws, queue, pending, counters);
+    store_paths(state, base, lanes, path);
+    using I = IntFor<Lanes>;
+    const auto u = std::size_t(base);
+    store(&state.pending[u], select(pending.direct, splat<I>(kDirectLight), splat<I>(0)));
+    store(&state.ends[u], select(going_on, splat<I>(0), splat<I>(1)));
+    state.shading_throughput.store(base, pending.throughput);
+    state.albedo.store(base, pending.albedo);
+    state.irradiance.store(base, splat_vector<Vec3For<Lanes>>(Color(0.0f)));
   }
 
-#if defined(GLINT_AVX2)
-  /// The samplers of paths base .. base+7 as one: drawn from in place in their Lanes form
-  /// (kSamplersInLanes), one by one otherwise. Each draw is for the lanes of a mask, whose
-  /// samplers alone advance; the values of the other lanes are unspecified.
-  class SamplerBlock {
+  /// Where ChainEstimator::step's light rays go for paths base .. base + kWidth - 1: the
+  /// thread's queues, traced by trace_shadow_rays and trace_emitter_rays.
+  class LightQueue {
    public:
-    SamplerBlock(detail::PathSamplers<SamplerType, kSamplersInLanes>& samplers, int base)
-        : samplers_(samplers), base_(base) {}
+    LightQueue(const WavefrontExecution& execution, ThreadState& state, int base)
+        : execution_(execution), state_(state), base_(base) {}
 
-    FloatLanes next_1d(LaneMask mask) {
-      if constexpr (kSamplersInLanes) {
-        return samplers_.block(base_).next_1d(lanes_of_bits(mask));
+    void shadow_rays(LaneMaskType lit, const RayFor<Lanes>& rays,
+                     const Vec3For<Lanes>& irradiance) {
+      if constexpr (kWidth == 1) {
+        if (lit) execution_.queue_shadow_ray(state_, base_, rays, irradiance);
       } else {
-        FloatLanes value = broadcast(0.0f);
-        for_each_lane(mask, [&](int i) { value[i] = samplers_[base_ + i].next_1d(); });
-        return value;
+        execution_.queue_shadow_rays(state_, base_, bits_of_mask(lit), rays, irradiance);
       }
     }
-    Vec2Lanes next_2d(LaneMask mask) {
-      if constexpr (kSamplersInLanes) {
-        return samplers_.block(base_).next_2d(lanes_of_bits(mask));
+    void emitter_rays(LaneMaskType sampled, const RayFor<Lanes>& rays,
+                      UIntFor<Lanes> emitter_sphere, const Vec3For<Lanes>& light) {
+      state_.emitter_light.store(base_, select(sampled, light, state_.emitter_light.load(base_)));
+      if constexpr (kWidth == 1) {
+        if (sampled) queue_emitter_ray(state_, base_, rays, emitter_sphere);
       } else {
-        Vec2Lanes value{broadcast(0.0f), broadcast(0.0f)};
-        for_each_lane(mask, [&](int i) {
-          const Vec2 u = samplers_[base_ + i].next_2d();
-          value.x[i] = u.x;
-          value.y[i] = u.y;
-        });
-        return value;
+        queue_emitter_rays(state_, base_, bits_of_mask(sampled), rays, emitter_sphere);
       }
     }
 
    private:
-    detail::PathSamplers<SamplerType, kSamplersInLanes>& samplers_;
+    const WavefrontExecution& execution_;
+    ThreadState& state_;
     int base_;
   };
 
-  /// What shade_lanes reads of the spheres that eight paths hit, gathered lane by lane.
-  struct SurfaceLanes {
-    Vec3Lanes center;
-    FloatLanes diffuse, mirror, transparent, ior, ior_outside;
-    Vec3Lanes diffuse_color, mirror_color, transparent_color, emission;
-    IntLanes fully_transparent;  ///< a mask
-    LaneMask emitters = 0;       ///< lanes whose sphere is an emitter
-    LaneMask patterned = 0;      ///< lanes whose sphere's colour depends on the point
+  /// The samplers of paths base .. base + kWidth - 1, to draw from with next_1d(draws, mask)
+  /// and next_2d(draws, mask): path base's own sampler at width 1; wider, their Lanes form in
+  /// place (kSamplersInLanes), else a SamplerBlock that draws lane by lane.
+  static decltype(auto) draws_of(ThreadState& state, int base) {
+    if constexpr (kWidth == 1) {
+      return state.sampler[base];
+#if defined(GLINT_AVX2)
+    } else if constexpr (kSamplersInLanes) {
+      return state.sampler.block(base);
+    } else {
+      return SamplerBlock(state.sampler, base);
+#endif
+    }
+  }
 
-    SurfaceLanes(const Scene& scene, const HitBatch& hits, LaneMask lanes) {
-      // The 88 bytes of SurfaceProperties, read as 22 words: the material's seventeen floats,
-      // the centre, ior_outside, a word whose two low bytes are the shading kind and
-      // fully_transparent (and whose two high bytes are padding), and the emitter's index.
-      // They are loaded in three blocks of eight consecutive words (the last two overlapping)
-      // for the eight lanes at once; a lane without a hit reads zeros.
-      static constexpr float kNoSurface[kRecordWords] = {};
-      const float* record[kLaneCount];
-      for (const float*& r : record)
-        r = kNoSurface;
-      for_each_lane(lanes, [&](int i) {
-        record[i] = reinterpret_cast<const float*>(&scene.surface(hits.sphere[i]));
+#if defined(GLINT_AVX2)
+  /// The samplers of paths base .. base+7 drawn from one by one, for a sampler without a Lanes
+  /// form. Each draw is for the lanes of a mask, whose samplers alone advance; the values of
+  /// the other lanes are unspecified.
+  class SamplerBlock {
+   public:
+    SamplerBlock(detail::PathSamplers<SamplerType, false>& samplers, int base)
+        : samplers_(samplers), base_(base) {}
+
+    FloatLanes next_1d(IntLanes mask) {
+      FloatLanes value = broadcast(0.0f);
+      for_each_lane(lane_bits(mask), [&](int i) { value[i] = samplers_[base_ + i].next_1d(); });
+      return value;
+    }
+    Vec2Lanes next_2d(IntLanes mask) {
+      Vec2Lanes value{broadcast(0.0f), broadcast(0.0f)};
+      for_each_lane(lane_bits(mask), [&](int i) {
+        const Vec2 u = samplers_[base_ + i].next_2d();
+        value.x[i] = u.x;
+        value.y[i] = u.y;
       });
-      FloatLanes first[kLaneCount], second[kLaneCount], last[kLaneCount];
-      const auto load_block = [&](int offset, FloatLanes(&columns)[kLaneCount]) {
-        const float* rows[kLaneCount];
-        for (int i = 0; i < kLaneCount; ++i)
-          rows[i] = record[i] + offset;
-        load_columns(rows, columns);
-      };
-      load_block(0, first);
-      load_block(8, second);
-      load_block(kRecordWords - 8, last);
-      diffuse = first[0];
-      diffuse_color = {first[1], first[2], first[3]};
-      mirror = first[4];
-      mirror_color = {first[5], first[6], first[7]};
-      transparent = second[0];
-      transparent_color = {second[1], second[2], second[3]};
-      ior = second[4];
-      emission = {second[5], second[6], second[7]};
-      center = {last[2], last[3], last[4]};
-      ior_outside = last[5];
-      const auto flags = std::bit_cast<IntLanes>(last[6]);
-      const auto emitter = std::bit_cast<IntLanes>(last[7]);
-      patterned = lanes & lane_bits((flags & 0xff) != std::int32_t(ShadingKind::uniform));
-      fully_transparent = (flags & 0xff00) != 0;
-      emitters = lanes & lane_bits(emitter != std::int32_t(kNotAnEmitter));
+      return value;
     }
 
    private:
-    static constexpr int kRecordWords = 22;
-    // The layout the loads above read.
-    static_assert(offsetof(SurfaceProperties, material) == 0 && offsetof(Material, diffuse) == 0 &&
-                  offsetof(Material, diffuse_color) == 4 && offsetof(Material, mirror) == 16 &&
-                  offsetof(Material, mirror_color) == 20 && offsetof(Material, transparent) == 32 &&
-                  offsetof(Material, transparent_color) == 36 && offsetof(Material, ior) == 48 &&
-                  offsetof(Material, emission) == 52 && offsetof(SurfaceProperties, center) == 64 &&
-                  offsetof(SurfaceProperties, ior_outside) == 76 &&
-                  offsetof(SurfaceProperties, shading) == 80 && sizeof(ShadingKind) == 1 &&
-                  offsetof(SurfaceProperties, fully_transparent) == 81 && sizeof(bool) == 1 &&
-                  offsetof(SurfaceProperties, emitter) == 84 &&
-                  sizeof(SurfaceProperties) == kRecordWords * sizeof(float));
+    detail::PathSamplers<SamplerType, false>& samplers_;
+    int base_;
   };
-
-  /// shade_path for the paths base .. base+7 of `lanes` at once: the same steps and the same
-  /// draws in the same order for each path, the arithmetic in SIMD lanes (masks where paths
-  /// differ), the draws and the queueing of rays lane by lane.
-  GLINT_FLATTEN void shade_lanes(ThreadState& state, int base, LaneMask lanes,
-                                 TraceCounters& counters) const {
-    const auto block = std::size_t(base / RayBatch::kWidth);
-    const RayBatch& ray = state.rays[block];
-    const HitBatch& hit = state.hits[block];
-    IntLanes sphere;
-    std::memcpy(&sphere, hit.sphere, sizeof sphere);
-    const LaneMask hits = lanes & lane_bits(sphere != std::int32_t(kNoSphere));
-    const IntLanes hit_mask = lanes_of_bits(hits);
-    const Vec3Lanes throughput = state.throughput.lanes(base);
-    Vec3Lanes radiance = state.radiance.lanes(base);
-    radiance = select(hit_mask, radiance,
-                      radiance + throughput * Vec3Lanes::broadcast(context_.background()));
-    std::int32_t* const pending = &state.pending[std::size_t(base)];
-    std::int32_t* const ends = &state.ends[std::size_t(base)];
-    store_lanes(pending, broadcast(0));
-    store_lanes(ends, broadcast(1));
-    if (hits == 0) {
-      state.radiance.set_lanes(base, radiance);
-      return;
-    }
-
-    // The hit, as Scene::surface_hit and detail::interface_at set it up.
-    const SurfaceLanes surface(scene_, hit, hits);
-    const Vec3Lanes direction = {load_lanes(ray.direction_x), load_lanes(ray.direction_y),
-                                 load_lanes(ray.direction_z)};
-    const Vec3Lanes origin = {load_lanes(ray.origin_x), load_lanes(ray.origin_y),
-                              load_lanes(ray.origin_z)};
-    const Vec3Lanes point = origin + load_lanes(hit.t) * direction;
-    const Vec3Lanes normal = normalize(point - surface.center);
-    const FloatLanes cos_out = dot(direction, normal);
-    const IntLanes from_inside = cos_out > 0.0f;
-    const Vec3Lanes facing = select(from_inside, -normal, normal);
-    const FloatLanes cos_incident = abs(cos_out);
-
-    // Emission, weighted against light sampling where an emitter was reached by a bounce.
-    FloatLanes emission_weight = broadcast(1.0f);
-    if constexpr (kSamplesEmitters)
-      for_each_lane(surface.emitters, [&](int i) {
-        const int p = base + i;
-        const BounceOrigin& from = state.from[std::size_t(p)];
-        if (!(from.pdf > 0.0f)) return;
-        const Ray lane_ray = ray_of(state, p);
-        const SphereHit lane_hit = hit_of(state, p);
-        const SurfaceInteraction interaction = context_.interaction(lane_ray, lane_hit);
-        emission_weight[i] = context_.emission_weight(lane_ray, lane_hit, interaction,
-                                                      interaction.surface->emitter, from);
-      });
-    radiance =
-        select(hit_mask, radiance + throughput * (surface.emission * emission_weight), radiance);
-    state.radiance.set_lanes(base, radiance);
-    state.shading_throughput.set_lanes(base, throughput);
-
-    // The material (ReportMaterial's terms).
-    Vec3Lanes albedo = surface.diffuse_color;
-    for_each_lane(surface.patterned & hits, [&](int i) {
-      const SurfaceProperties& s = scene_.surface(hit.sphere[i]);
-      albedo.set_lane(
-          i, C::sphere_shading::color(s.shading, s.material.diffuse_color, normal.lane(i)));
-    });
-    const IntLanes has_diffuse = hit_mask & (surface.diffuse > 0.0f);
-    albedo = select(has_diffuse, surface.diffuse * albedo, Vec3Lanes::broadcast(Color(0.0f)));
-    const FloatLanes total = surface.diffuse + surface.mirror + surface.transparent;
-    const IntLanes depth = load_lanes(&state.depth[std::size_t(base)]);
-    const LaneMask diffuse_lanes = lane_bits(has_diffuse);
-    SamplerBlock draws(state.sampler, base);
-
-    // Light: the point lights' shadow rays and the emitter sample, at diffuse hits.
-    if (diffuse_lanes != 0) {
-      state.albedo.set_lanes(base, albedo);
-      state.irradiance.set_lanes(base, Vec3Lanes::broadcast(Color(0.0f)));
-      store_lanes(pending, has_diffuse & kDirectLight);
-      for (const PointLight& light : scene_.lights()) {
-        const Vec3Lanes to_light = Vec3Lanes::broadcast(light.position) - point;
-        const FloatLanes distance2 = dot(to_light, to_light);
-        const FloatLanes distance = sqrt(distance2);
-        const Vec3Lanes toward = to_light / distance;
-        const FloatLanes cosine = dot(toward, facing);
-        const LaneMask lit = diffuse_lanes & lane_bits(cosine > 0.0f);
-        if (lit == 0) continue;
-        const Vec3Lanes irradiance =
-            ((light.intensity * cosine) / distance2) * Vec3Lanes::broadcast(light.color);
-        counters.rays += std::uint64_t(std::popcount(lit));
-        queue_shadow_rays(
-            state, base, lit,
-            {point, toward, broadcast(0.0f), distance, sphere, dot(toward, normal) < 0.0f},
-            irradiance);
-      }
-      if constexpr (kSamplesEmitters)
-        sample_emitters_lanes(state, base, diffuse_lanes & lane_bits(depth < context_.max_depth()),
-                              sphere, point, normal, facing, from_inside, albedo,
-                              surface.diffuse / total, draws, counters);
-    }
-
-    // Roulette and the lobe, in ChainEstimator's order.
-    LaneMask going_on = hits & lane_bits((depth < context_.max_depth()) & (total > 0.0f));
-    FloatLanes continuation = broadcast(1.0f);
-    if constexpr (C::path_termination::uses_roulette) {
-      const FloatLanes p =
-          C::path_termination::continue_probability(depth, max_component(throughput));
-      const LaneMask played = going_on & lane_bits(p < 1.0f);
-      if (played != 0) going_on &= ~(played & lane_bits(draws.next_1d(played) >= p));
-      continuation = select(p < 1.0f, 1.0f / p, continuation);
-    }
-    if (going_on == 0) return;
-    const FloatLanes u_lobe = draws.next_1d(going_on) * total;
-    const IntLanes choose_diffuse = u_lobe < surface.diffuse;
-    const IntLanes choose_mirror = ~choose_diffuse & (u_lobe < surface.diffuse + surface.mirror);
-    const IntLanes choose_transmission = ~(choose_diffuse | choose_mirror);
-
-    const Vec3Lanes reflected = direction + (2.0f * cos_incident) * facing;
-    const LaneMask diffuse_draws = going_on & lane_bits(choose_diffuse);
-    // One draw per path: the diffuse direction's or Fresnel's (never both).
-    const Vec2Lanes u_diffuse = draws.next_2d(diffuse_draws);
-
-    // Transmission: refraction, or reflection on total internal reflection or by Fresnel
-    // (worked out only where some path transmits).
-    IntLanes reflect = broadcast(0);
-    Vec3Lanes refracted = reflected;
-    if ((going_on & lane_bits(choose_transmission)) != 0) {
-      const FloatLanes eta_incident = select(from_inside, surface.ior, surface.ior_outside);
-      const FloatLanes eta_transmitted = select(from_inside, surface.ior_outside, surface.ior);
-      const FloatLanes eta = eta_incident / eta_transmitted;
-      const FloatLanes sin2_transmitted = eta * eta * (1.0f - cos_incident * cos_incident);
-      const IntLanes total_internal = sin2_transmitted >= 1.0f;
-      const FloatLanes cos_transmitted = sqrt(max(broadcast(0.0f), 1.0f - sin2_transmitted));
-      refracted = normalize(eta * direction + (eta * cos_incident - cos_transmitted) * facing);
-      reflect = total_internal;
-      if constexpr (C::fresnel::enabled) {
-        const IntLanes by_fresnel =
-            choose_transmission & ~total_internal & surface.fully_transparent;
-        const FloatLanes reflectance =
-            C::fresnel::reflectance(cos_incident, eta_incident, eta_transmitted);
-        const LaneMask fresnel_draws = going_on & lane_bits(by_fresnel);
-        if (fresnel_draws != 0)
-          reflect |= lanes_of_bits(fresnel_draws) & (draws.next_1d(fresnel_draws) < reflectance);
-      }
-    }
-
-    // Diffuse: a direction from C::diffuse_sampling in the frame of the facing normal.
-    const BasicDirectionSample<FloatLanes> diffuse_sample = C::diffuse_sampling::sample(u_diffuse);
-    const Vec3Lanes diffuse_direction =
-        BasicFrame<Vec3Lanes>::around(facing).to_world(diffuse_sample.local_direction);
-
-    const Vec3Lanes next_direction = select(choose_diffuse, diffuse_direction,
-                                            select(choose_mirror | reflect, reflected, refracted));
-    const Vec3Lanes tint =
-        select(choose_diffuse, albedo,
-               select(choose_mirror, surface.mirror_color, surface.transparent_color));
-    const FloatLanes factor =
-        select(choose_diffuse, diffuse_sample.weight * kInvPi * total / surface.diffuse, total);
-    if constexpr (kSamplesEmitters) {
-      const FloatLanes pdf =
-          C::diffuse_sampling::pdf(diffuse_sample.local_direction.z) * (surface.diffuse / total);
-      // The eight paths' BounceOrigins (a float each) as one register.
-      static_assert(sizeof(Origin) == sizeof(float) && std::is_trivially_copyable_v<Origin>);
-      FloatLanes from;
-      std::memcpy(&from, &state.from[std::size_t(base)], sizeof from);
-      from = select(lanes_of_bits(going_on), select(choose_diffuse, pdf, broadcast(0.0f)), from);
-      std::memcpy(static_cast<void*>(&state.from[std::size_t(base)]), &from, sizeof from);
-    }
-
-    const IntLanes continues = lanes_of_bits(going_on);
-    state.throughput.set_lanes(
-        base, select(continues, throughput * (tint * (factor * continuation)), throughput));
-    store_lanes(&state.depth[std::size_t(base)], select(continues, depth + 1, depth));
-    set_rays(state.rays[block], continues,
-             {point, next_direction, broadcast(0.0f), broadcast(kInfinity), sphere,
-              dot(next_direction, normal) < 0.0f});
-    store_lanes(ends, ~continues & 1);
-  }
-
-  /// Eight rays in SIMD lanes (Ray's fields).
-  struct RayLanes {
-    Vec3Lanes origin, direction;
-    FloatLanes t_min, t_max;
-    IntLanes origin_sphere;
-    IntLanes heads_into_origin_sphere;  ///< a mask
-  };
-
-  /// Sets the lanes of `mask` of `rays` to `to`, as RayBatch::set would lane by lane.
-  static void set_rays(RayBatch& rays, IntLanes mask, const RayLanes& to) {
-    const auto update = [&](float* column, FloatLanes value) {
-      store_lanes(column, select(mask, value, load_lanes(column)));
-    };
-    update(rays.origin_x, to.origin.x);
-    update(rays.origin_y, to.origin.y);
-    update(rays.origin_z, to.origin.z);
-    update(rays.direction_x, to.direction.x);
-    update(rays.direction_y, to.direction.y);
-    update(rays.direction_z, to.direction.z);
-    update(rays.t_min, to.t_min);
-    update(rays.t_max, to.t_max);
-    IntLanes sphere;
-    std::memcpy(&sphere, rays.origin_sphere, sizeof sphere);
-    sphere = select(mask, to.origin_sphere, sphere);
-    std::memcpy(rays.origin_sphere, &sphere, sizeof sphere);
-    const LaneMask bits = lane_bits(mask);
-    rays.heads_into_origin_sphere =
-        (rays.heads_into_origin_sphere & ~bits) | (lane_bits(to.heads_into_origin_sphere) & bits);
-  }
-
-  /// The emitter sample of PathContext::emitter_ray for the lanes of `lanes` (diffuse hits
-  /// from which a bounce may follow): the draws lane by lane, the rest in SIMD lanes.
-  void sample_emitters_lanes(ThreadState& state, int base, LaneMask lanes, IntLanes hit_sphere,
-                             const Vec3Lanes& point, const Vec3Lanes& normal,
-                             const Vec3Lanes& facing, IntLanes from_inside, const Vec3Lanes& albedo,
-                             FloatLanes diffuse_probability, SamplerBlock& draws,
-                             TraceCounters& counters) const {
-    if (lanes == 0) return;
-    std::int32_t* const pending = &state.pending[std::size_t(base)];
-    store_lanes(pending, load_lanes(pending) | (lanes_of_bits(lanes) & kEmitterRay));
-    state.emitter_light.set_lanes(base, Vec3Lanes::broadcast(Color(0.0f)));
-    const EmitterTable& emitters = scene_.emitters();
-    if (emitters.empty()) return;
-    const FloatLanes u_choice = draws.next_1d(lanes);
-    const Vec2Lanes u = draws.next_2d(lanes);
-    // The chosen emitters' eight words (centre, radius, radiance, sphere) as one 8x8 transpose.
-    // Every lane's index is a valid one, whatever its u, so every lane may read its record.
-    static_assert(offsetof(SphereEmitter, center) == 0 && offsetof(SphereEmitter, radius) == 12 &&
-                  offsetof(SphereEmitter, radiance) == 16 &&
-                  offsetof(SphereEmitter, sphere) == 28 && sizeof(SphereEmitter) == 32);
-    const IntLanes chosen = emitters.choose_lanes(u_choice);
-    const float* records[kLaneCount];
-    FloatLanes probability;
-    for (int i = 0; i < kLaneCount; ++i) {
-      const auto index = std::uint32_t(chosen[i]);
-      records[i] = reinterpret_cast<const float*>(&emitters[index]);
-      probability[i] = emitters.probability(index);
-    }
-    FloatLanes words[kLaneCount];
-    load_columns(records, words);
-    const Vec3Lanes center{words[0], words[1], words[2]};
-    const FloatLanes radius = words[3];
-    const Vec3Lanes radiance{words[4], words[5], words[6]};
-    const auto emitter_sphere = std::bit_cast<IntLanes>(words[7]);
-    const LaneMask on_emitter = lanes & lane_bits(emitter_sphere == hit_sphere);
-    // SphereEmitter::view_from lane by lane: from outside, from inside (or from the emitter's
-    // inner surface), or from its outer surface (none). Lanes not sampled count as outside,
-    // so that they alone never make the area branch run.
-    const Vec3Lanes offset = point - center;
-    const IntLanes on = lanes_of_bits(on_emitter);
-    const IntLanes outside =
-        ~lanes_of_bits(lanes) | (~on & (dot(offset, offset) > radius * radius));
-    const IntLanes none = on & ~from_inside;
-    const BasicEmitterSample<FloatLanes> sample =
-        sample_sphere_emitter(center, radius, point, outside, none, u);
-    const Vec3Lanes& toward = sample.direction;
-    const FloatLanes& pdf = sample.pdf;
-    const FloatLanes cosine = dot(toward, facing);
-    const Vec3Lanes reflected =
-        select(cosine > 0.0f, albedo * (kInvPi * cosine), Vec3Lanes::broadcast(Color(0.0f)));
-    const IntLanes arrives =
-        sample.valid & (pdf > 0.0f) &
-        ((reflected.x != 0.0f) | (reflected.y != 0.0f) | (reflected.z != 0.0f));
-    const LaneMask sampled = lanes & lane_bits(arrives);
-    if (sampled == 0) return;
-    const FloatLanes light_pdf = probability * pdf;
-    const FloatLanes weight = C::light_sampling::light_weight(
-        light_pdf, diffuse_probability * C::diffuse_sampling::pdf(cosine));
-    const Vec3Lanes light = reflected * radiance * (weight / light_pdf);
-    state.emitter_light.set_lanes(
-        base, select(lanes_of_bits(sampled), light, Vec3Lanes::broadcast(Color(0.0f))));
-    counters.rays += std::uint64_t(std::popcount(sampled));
-    queue_emitter_rays(state, base, sampled,
-                       {point, toward, broadcast(0.0f), broadcast(kInfinity), hit_sphere,
-                        dot(toward, normal) < 0.0f},
-                       emitter_sphere);
-  }
 
   /// Appends the rays of lanes `lanes` of `rays` to the queue `blocks`, which holds `count`
   /// rays, in lane order: what RayBatch::set would write lane by lane, a column at a time. The
   /// queue has room for them.
   static void append_rays(RayBatch* blocks, int count, LaneMask lanes, IntLanes packing,
-                          const RayLanes& rays) {
+                          const RayLanes<FloatLanes>& rays) {
     const int at = count % RayBatch::kWidth;
     const int end = at + std::popcount(lanes);
     RayBatch& last = blocks[count / RayBatch::kWidth];
@@ -957,7 +653,7 @@ class WavefrontExecution {
       ids = select(into, value, ids);
       std::memcpy(batch.origin_sphere, &ids, sizeof ids);
     };
-    const IntLanes origin_sphere = permute(rays.origin_sphere, order);
+    const IntLanes origin_sphere = permute(std::bit_cast<IntLanes>(rays.origin_sphere), order);
     append_ids(last, into_last, origin_sphere);
     if (next) append_ids(*next, into_next, origin_sphere);
     const LaneMask heads_in = lane_bits(permute(rays.heads_into_origin_sphere, order));
@@ -979,26 +675,27 @@ class WavefrontExecution {
   }
 
   /// queue_shadow_ray for the lanes of `lanes` of paths base .. base+7, in lane order.
-  void queue_shadow_rays(ThreadState& state, int base, LaneMask lanes, const RayLanes& rays,
-                         const Vec3Lanes& light) const {
+  void queue_shadow_rays(ThreadState& state, int base, LaneMask lanes,
+                         const RayLanes<FloatLanes>& rays, const Vec3Lanes& light) const {
     if (state.shadow_count + std::popcount(lanes) > kShadowQueue) trace_shadow_rays(state);
     const int q = state.shadow_count;
     const IntLanes packing = packing_order(lanes);
     append_rays(state.shadow_rays.data(), q, lanes, packing, rays);
     append_values(&state.shadow_owner[std::size_t(q)], packing, base + lane_indices());
-    state.shadow_irradiance.set_lanes(
-        q, {permute(light.x, packing), permute(light.y, packing), permute(light.z, packing)});
+    state.shadow_irradiance.store(q, Vec3Lanes{permute(light.x, packing), permute(light.y, packing),
+                                               permute(light.z, packing)});
     state.shadow_count += std::popcount(lanes);
   }
 
   /// queue_emitter_ray for the lanes of `lanes` of paths base .. base+7, in lane order.
-  static void queue_emitter_rays(ThreadState& state, int base, LaneMask lanes, const RayLanes& rays,
-                                 IntLanes emitter_sphere) {
+  static void queue_emitter_rays(ThreadState& state, int base, LaneMask lanes,
+                                 const RayLanes<FloatLanes>& rays, UintLanes emitter_sphere) {
     const int q = state.emitter_count;
     const IntLanes packing = packing_order(lanes);
     append_rays(state.emitter_rays.data(), q, lanes, packing, rays);
     append_values(&state.emitter_owner[std::size_t(q)], packing, base + lane_indices());
-    append_values(&state.emitter_sphere[std::size_t(q)], packing, emitter_sphere);
+    append_values(&state.emitter_sphere[std::size_t(q)], packing,
+                  std::bit_cast<IntLanes>(emitter_sphere));
     state.emitter_count += std::popcount(lanes);
   }
 
@@ -1065,17 +762,12 @@ class WavefrontExecution {
     state.emitter_count = 0;
   }
 
-  /// Adds the light the traced rays found to each path (ChainEstimator's terms, in its order)
-  /// and retires the paths that ended, their radiance kept for add_finished; the paths that
-  /// go on are moved down to fill the holes. Returns the number left.
+  /// Adds the light the traced rays found to each path (ChainEstimator::add_light) and retires
+  /// the paths that ended, their radiance kept for add_finished; the paths that go on are
+  /// moved down to fill the holes. Returns the number left.
   GLINT_STAGE static int gather_and_retire(ThreadState& state, int live) {
-#if defined(GLINT_AVX2)
-    for (int base = 0; base < live; base += RayBatch::kWidth)
-      gather_lanes(state, base);
-#else
-    for (int p = 0; p < live; ++p)
-      gather_path(state, p);
-#endif
+    for (int base = 0; base < live; base += kWidth)
+      gather_block(state, base);
     // The ended paths as bits, visited from the last down: a path moved into a hole comes from
     // above it, where every path has been visited, so the bits taken first stay true. (A test of
     // each path's flag instead is a branch that mispredicts about once per ended path.)
@@ -1103,38 +795,21 @@ class WavefrontExecution {
     return live;
   }
 
-  static void gather_path(ThreadState& state, int p) {
-    const std::int32_t pending = state.pending[std::size_t(p)];
-    Color radiance = state.radiance.get(p);
-    if (pending & kDirectLight)
-      radiance += (state.shading_throughput.get(p) * state.albedo.get(p)) *
-                  (kInvPi * state.irradiance.get(p));
-    if (pending & kEmitterRay)
-      radiance += state.shading_throughput.get(p) *
-                  ((pending & kEmitterVisible) ? state.emitter_light.get(p) : Color(0.0f));
-    state.radiance.set(p, radiance);
+  /// add_light for paths base .. base + kWidth - 1 (those beyond the live ones are left as
+  /// they are: their pending flags are clear).
+  static void gather_block(ThreadState& state, int base) {
+    using I = IntFor<Lanes>;
+    const I pending = load<I>(&state.pending[std::size_t(base)]);
+    const LaneMaskType direct = (pending & kDirectLight) != 0;
+    const LaneMaskType visible = (pending & kEmitterVisible) != 0;
+    if (!any(direct || visible)) return;
+    state.radiance.store(base,
+                         ChainEstimator<C>::add_light(
+                             state.radiance.load(base),
+                             PendingLight<Lanes>{direct, state.shading_throughput.load(base),
+                                                 state.albedo.load(base)},
+                             state.irradiance.load(base), visible, state.emitter_light.load(base)));
   }
-
-#if defined(GLINT_AVX2)
-  /// gather_path for paths base .. base+7 (those beyond the live ones are left as they are:
-  /// their pending flags are clear).
-  static void gather_lanes(ThreadState& state, int base) {
-    const IntLanes pending = load_lanes(&state.pending[std::size_t(base)]);
-    if (lane_bits(pending != 0) == 0) return;
-    const Vec3Lanes zero = Vec3Lanes::broadcast(Color(0.0f));
-    const Vec3Lanes throughput = state.shading_throughput.lanes(base);
-    Vec3Lanes radiance = state.radiance.lanes(base);
-    radiance = select((pending & kDirectLight) != 0,
-                      radiance + (throughput * state.albedo.lanes(base)) *
-                                     (kInvPi * state.irradiance.lanes(base)),
-                      radiance);
-    radiance = select((pending & kEmitterRay) != 0,
-                      radiance + throughput * select((pending & kEmitterVisible) != 0,
-                                                     state.emitter_light.lanes(base), zero),
-                      radiance);
-    state.radiance.set_lanes(base, radiance);
-  }
-#endif
 
   /// Moves path `from` (still going on) to place `to`, whose path has ended.
   static void move_path(ThreadState& state, int from, int to) {
@@ -1144,7 +819,7 @@ class WavefrontExecution {
     state.radiance.set(to, state.radiance.get(from));
     state.depth[t] = state.depth[f];
     state.sample[t] = state.sample[f];
-    state.from[t] = state.from[f];
+    state.from_pdf[t] = state.from_pdf[f];
     state.sampler.move(from, to);
   }
 
@@ -1168,7 +843,7 @@ class WavefrontExecution {
   }
 
   const Scene& scene_;
-  PathContext<C> context_;
+  ChainEstimator<C> estimator_;
   Camera camera_;
   RenderSettings settings_;
 };

@@ -1,0 +1,125 @@
+#pragma once
+// The properties of the spheres that a Float's lanes of hits met, as the shading step reads
+// them: one sphere's SurfaceProperties at width 1, a column per field wider.
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+
+#include "glint/math/lanes.hpp"
+#include "glint/math/wide.hpp"
+#include "glint/scene/scene.hpp"
+
+namespace glint {
+
+/// SurfaceProperties lane by lane (lane i: the sphere of hit i).
+template <typename F>
+struct SurfaceLanes {
+  using V3 = Vec3For<F>;
+  F diffuse;
+  V3 diffuse_color;
+  F mirror;
+  V3 mirror_color;
+  F transparent;
+  V3 transparent_color;
+  F ior;
+  V3 emission;
+  V3 center;
+  F ior_outside;
+  MaskFor<F> fully_transparent;
+  IntFor<F> shading;   ///< the ShadingKind
+  UIntFor<F> emitter;  ///< index in Scene::emitters(), or kNotAnEmitter
+};
+
+namespace detail {
+inline void set_surface_lane(SurfaceLanes<float>& to, int, const SurfaceProperties& s) {
+  const Material& m = s.material;
+  to = {m.diffuse,      m.diffuse_color,     m.mirror,
+        m.mirror_color, m.transparent,       m.transparent_color,
+        m.ior,          m.emission,          s.center,
+        s.ior_outside,  s.fully_transparent, std::int32_t(s.shading),
+        s.emitter};
+}
+template <typename F>
+void set_surface_lane(SurfaceLanes<F>& to, int i, const SurfaceProperties& s) {
+  const Material& m = s.material;
+  to.diffuse[i] = m.diffuse;
+  to.diffuse_color.set_lane(i, m.diffuse_color);
+  to.mirror[i] = m.mirror;
+  to.mirror_color.set_lane(i, m.mirror_color);
+  to.transparent[i] = m.transparent;
+  to.transparent_color.set_lane(i, m.transparent_color);
+  to.ior[i] = m.ior;
+  to.emission.set_lane(i, m.emission);
+  to.center.set_lane(i, s.center);
+  to.ior_outside[i] = s.ior_outside;
+  to.fully_transparent[i] = s.fully_transparent ? -1 : 0;
+  to.shading[i] = std::int32_t(s.shading);
+  to.emitter[i] = s.emitter;
+}
+}  // namespace detail
+
+/// The properties of spheres `sphere` in the lanes of `lanes`; the other lanes read as a sphere
+/// of zeros (no lobe, no emission, not an emitter).
+template <FloatType F>
+SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F> lanes) {
+  constexpr int W = kLanesOf<F>;
+  SurfaceLanes<F> s{};
+  s.emitter = splat<UIntFor<F>>(kNotAnEmitter);
+  if constexpr (W == 1) {
+    if (lanes) detail::set_surface_lane(s, 0, scene.surface(sphere));
+#if defined(GLINT_AVX2)
+  } else if constexpr (W == kLaneCount) {
+    // The 88 bytes of SurfaceProperties, read as 22 words: the material's seventeen floats, the
+    // centre, ior_outside, a word whose two low bytes are the shading kind and
+    // fully_transparent (and whose two high bytes are padding), and the emitter's index. They
+    // are loaded in three blocks of eight consecutive words (the last two overlapping) for the
+    // eight lanes at once, transposed in registers.
+    constexpr int kRecordWords = 22;
+    static_assert(offsetof(SurfaceProperties, material) == 0 && offsetof(Material, diffuse) == 0 &&
+                  offsetof(Material, diffuse_color) == 4 && offsetof(Material, mirror) == 16 &&
+                  offsetof(Material, mirror_color) == 20 && offsetof(Material, transparent) == 32 &&
+                  offsetof(Material, transparent_color) == 36 && offsetof(Material, ior) == 48 &&
+                  offsetof(Material, emission) == 52 && offsetof(SurfaceProperties, center) == 64 &&
+                  offsetof(SurfaceProperties, ior_outside) == 76 &&
+                  offsetof(SurfaceProperties, shading) == 80 && sizeof(ShadingKind) == 1 &&
+                  offsetof(SurfaceProperties, fully_transparent) == 81 && sizeof(bool) == 1 &&
+                  offsetof(SurfaceProperties, emitter) == 84 &&
+                  sizeof(SurfaceProperties) == kRecordWords * sizeof(float));
+    static constexpr float kNoSurface[kRecordWords] = {};
+    const float* record[kLaneCount];
+    for (int i = 0; i < kLaneCount; ++i)
+      record[i] = lanes[i] ? reinterpret_cast<const float*>(&scene.surface(sphere[i])) : kNoSurface;
+    FloatLanes first[kLaneCount], second[kLaneCount], last[kLaneCount];
+    const auto load_block = [&](int offset, FloatLanes(&columns)[kLaneCount]) {
+      const float* rows[kLaneCount];
+      for (int i = 0; i < kLaneCount; ++i)
+        rows[i] = record[i] + offset;
+      load_columns(rows, columns);
+    };
+    load_block(0, first);
+    load_block(8, second);
+    load_block(kRecordWords - 8, last);
+    s.diffuse = first[0];
+    s.diffuse_color = {first[1], first[2], first[3]};
+    s.mirror = first[4];
+    s.mirror_color = {first[5], first[6], first[7]};
+    s.transparent = second[0];
+    s.transparent_color = {second[1], second[2], second[3]};
+    s.ior = second[4];
+    s.emission = {second[5], second[6], second[7]};
+    s.center = {last[2], last[3], last[4]};
+    s.ior_outside = last[5];
+    const auto flags = std::bit_cast<IntLanes>(last[6]);
+    s.shading = flags & 0xff;
+    s.fully_transparent = (flags & 0xff00) != 0;
+    s.emitter = select(lanes, std::bit_cast<UintLanes>(last[7]), UintLanes{} + kNotAnEmitter);
+#endif
+  } else {
+    for (int i = 0; i < W; ++i)
+      if (lanes[i]) detail::set_surface_lane(s, i, scene.surface(sphere[i]));
+  }
+  return s;
+}
+
+}  // namespace glint
