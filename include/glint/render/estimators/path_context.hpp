@@ -1,7 +1,7 @@
 #pragma once
 // What both estimators share: finding the next hit and setting it up for shading, gathering
 // the point lights there, sampling the emissive spheres and weighting the emission a bounce
-// finds (C::light_sampling), and the path termination policy. Units (see README): a point light
+// finds (C::light_sampling), and path termination. Units (docs/library.md): a point light
 // of intensity I (W/sr) at distance d gives irradiance I * colour * cos(theta) / d^2; a diffuse
 // lobe reflects diffuse * colour / pi of its irradiance as radiance.
 
