@@ -5,7 +5,7 @@
 // --only NAME keeps the scenes whose name starts with NAME ("packing", "random 10^6").
 //
 // Scenes: glint's random scenes of 10^3 to 10^6 spheres (the generator's six walls of radius
-// 1e5 included, the density of the README's million-sphere scene), and a dense packing (a cubic
+// 1e5 included, 10^6 spheres per cube of side 2000), and a dense packing (a cubic
 // lattice of nearly touching spheres). Rays, at least 2^20 distinct ones per set: coherent
 // camera rays (one per pixel of a 1024x1024 image of the scene's camera, in 4x2 pixel blocks, so
 // that Embree's 8-ray packets are pixel neighbours) and incoherent random rays (origins uniform
@@ -64,7 +64,7 @@ struct TestScene {
   glint::SceneDescription description;
 };
 
-/// A random scene of about `count` spheres at the density of the README's million-sphere scene
+/// A random scene of about `count` spheres at the density of a million-sphere random scene
 /// (a cube of side 2000 for 10^6, radii 1 to 8).
 TestScene random_scene(int count) {
   glint::RandomSceneParameters p;

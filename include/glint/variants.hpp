@@ -8,7 +8,7 @@
 // changes and whether it converges to the report's image (as pbrt-v4's types carry Name()).
 // The glint-render-NAME executables, the benchmarks, the tests, bench/run-all's tables and the
 // README's variant table are all derived from `all`: adding a variant is a struct here plus its
-// entry in `all` (then `bench/run-all` or the README test says where the docs need a line).
+// entry in `all` (then `bench/run-all` or `ctest -L docs` says where the docs need a line).
 
 #include <string_view>
 #include <tuple>

@@ -1,4 +1,4 @@
-# Shared by bench/run-all and scripts/update-readme (sourced, not run): the named variants as
+# Shared by bench/run-all and scripts/update-docs (sourced, not run): the named variants as
 # the tables show them, read from the variants.tsv that configuring glint writes
 # (cmake/GlintVariants.cmake runs cmake/list_variants.cpp over include/glint/variants.hpp).
 # Its lines are "variant<TAB>NAME<TAB>same|different<TAB>DESCRIPTION", in the order of

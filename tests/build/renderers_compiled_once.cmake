@@ -1,9 +1,11 @@
 # Fails, naming the files and one symbol of each, if an object file of the build outside
 # glint-renderers defines a member of a named variant's renderer, execution model, path tracer
-# or estimator: that file compiled a renderer that glint-renderers already holds.
+# or estimator: that file compiled a renderer that glint-renderers already holds. The examples
+# (examples/) and the consumer test are exempt: they are programs of a library user, who
+# compiles the renderers they use.
 cmake_minimum_required(VERSION 3.20)
 file(GLOB_RECURSE objects ${BUILD_DIR}/*.o)
-list(FILTER objects EXCLUDE REGEX "/CMakeFiles/glint-renderers\\.dir/|/consumer-test/")
+list(FILTER objects EXCLUDE REGEX "/CMakeFiles/glint-renderers\\.dir/|/consumer-test/|/examples/[a-z_]+/CMakeFiles/")
 if(NOT objects)
   message(FATAL_ERROR "no object files under ${BUILD_DIR}: build first")
 endif()

@@ -1,12 +1,12 @@
 # End-to-end checks of the glint-render command line: exit codes, messages, outputs.
 
-# glint-render's progress printer (examples/progress_printer.hpp) on fixed sequences of
-# reports, glint-render-mpi's scheduling (examples/tile_scheduler.hpp), which needs no MPI, and
-# the programs' CPU check's message (examples/cpu_check.hpp).
+# glint-render's progress printer (apps/progress_printer.hpp) on fixed sequences of
+# reports, glint-render-mpi's scheduling (apps/tile_scheduler.hpp), which needs no MPI, and
+# the programs' CPU check's message (apps/cpu_check.hpp).
 add_executable(glint-cli-tests ${CMAKE_CURRENT_LIST_DIR}/progress_printer_test.cpp
                                ${CMAKE_CURRENT_LIST_DIR}/tile_scheduler_test.cpp
                                ${CMAKE_CURRENT_LIST_DIR}/cpu_check_test.cpp)
-target_include_directories(glint-cli-tests PRIVATE ${PROJECT_SOURCE_DIR}/examples)
+target_include_directories(glint-cli-tests PRIVATE ${PROJECT_SOURCE_DIR}/apps)
 target_link_libraries(glint-cli-tests PRIVATE glint::glint glint_project_options glint_catch_main)
 catch_discover_tests(glint-cli-tests TEST_PREFIX "cli: "
                      PROPERTIES LABELS cli TIMEOUT ${GLINT_TEST_TIMEOUT})

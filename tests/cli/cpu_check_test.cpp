@@ -1,4 +1,4 @@
-// The CPU check of glint's programs (examples/cpu_check.hpp): what it says when instruction sets
+// The CPU check of glint's programs (apps/cpu_check.hpp): what it says when instruction sets
 // the build uses are missing. A CPU without them is not at hand, so the message is checked on
 // a made-up list, and the real list on this machine, which built the program, lacks nothing.
 

@@ -1,4 +1,4 @@
-// glint-render's progress output (examples/progress_printer.hpp): format_seconds, and
+// glint-render's progress output (apps/progress_printer.hpp): format_seconds, and
 // ProgressPrinter fed fixed sequences of progress reports, its stderr redirected to a file (a log:
 // a line per tenth of the work) or to a pseudo-terminal (one line redrawn in place). The expected
 // text is worked out by hand from the reports: ETA = elapsed * (1 - fraction) / fraction, with
@@ -170,7 +170,7 @@ TEST_CASE("on a terminal, progress is one line redrawn at most every 0.1 s", "[c
         "\r[100%] 0.8 s elapsed, ETA 0.0 s   \n");
 }
 
-// glint-render's report while a scene loads (examples/load_progress.hpp).
+// glint-render's report while a scene loads (apps/load_progress.hpp).
 
 namespace {
 

@@ -1,4 +1,4 @@
-// glint-render-mpi's scheduling (examples/tile_scheduler.hpp), without MPI: which rank gets which
+// glint-render-mpi's scheduling (apps/tile_scheduler.hpp), without MPI: which rank gets which
 // tile, when sums must travel with it, and the queue between a rank's main thread and its
 // rendering threads.
 

@@ -1,10 +1,10 @@
 # glint-compare's page in headless Chromium, and glint-compare's refusals (label `viewer`):
 # tests/viewer/viewer_test.bash. glint-compare is built in bench/ and the renderers in
-# examples/, so both must be on; the targets are named through generator expressions because
+# apps/, so both must be on; the targets are named through generator expressions because
 # bench/ is added after tests/.
-if(NOT (GLINT_BUILD_BENCHMARKS AND GLINT_BUILD_EXAMPLES))
+if(NOT (GLINT_BUILD_BENCHMARKS AND GLINT_BUILD_PROGRAMS))
   message(STATUS "glint: no viewer tests (they need GLINT_BUILD_BENCHMARKS and "
-                 "GLINT_BUILD_EXAMPLES)")
+                 "GLINT_BUILD_PROGRAMS)")
   return()
 endif()
 find_program(GLINT_BASH bash)

@@ -1,6 +1,6 @@
 #pragma once
 // The scene file reader: text in, validated SceneDescription out. The format is specified in
-// the README ("The scene format"); in short, one statement per line, `#` starts a comment,
+// docs/scene-format.md; in short, one statement per line, `#` starts a comment,
 // `key=value` tokens, vectors `x,y,z`:
 //
 //   image  width=800 height=600 spp=64
@@ -141,6 +141,21 @@ static_assert(std::size(kSphereKeys) <= 16 && kShading + 1 == int(std::size(kSph
 
 inline constexpr std::string_view kStatements[] = {"image",  "camera", "antialias", "background",
                                                    "medium", "light",  "material",  "sphere"};
+
+/// A statement and the keys the reader accepts for it (for `material`, after its name).
+struct StatementKeys {
+  std::string_view statement;
+  std::span<const std::string_view> keys;
+};
+inline constexpr StatementKeys kStatementKeys[] = {
+    {"image", kImageKeys},           {"camera", kCameraKeys}, {"antialias", kAntialiasKeys},
+    {"background", kBackgroundKeys}, {"medium", kMediumKeys}, {"light", kLightKeys},
+    {"material", kMaterialKeys},     {"sphere", kSphereKeys}};
+static_assert(std::size(kStatementKeys) == std::size(kStatements) && [] {
+  for (std::size_t i = 0; i < std::size(kStatements); ++i)
+    if (kStatementKeys[i].statement != kStatements[i]) return false;
+  return true;
+}());
 
 /// The key=value tokens of one statement, indexed by their position in the statement's table.
 struct Fields {
@@ -510,6 +525,12 @@ class Parser {
 };
 
 }  // namespace detail::scene_reader
+
+/// Every statement of the scene format with the keys the reader accepts for it, from the
+/// reader's own tables: what docs/scene-format.md must document (`ctest -L docs` checks it).
+inline constexpr std::span<const detail::scene_reader::StatementKeys> scene_format_statements() {
+  return detail::scene_reader::kStatementKeys;
+}
 
 /// Parses and validates a scene; `source` names it in error messages ("FILE:LINE: error: ...").
 inline SceneDescription read_scene_text(std::string_view text, std::string source = "<scene>",

@@ -1,5 +1,5 @@
 #pragma once
-// Writes a SceneDescription in the glint scene format (see the README), the inverse of
+// Writes a SceneDescription in the glint scene format (docs/scene-format.md), the inverse of
 // io/scene_reader.hpp: reading the text back gives the same description, every float bit for
 // bit (line numbers and the source label aside, which belong to the file, not the scene).
 //

@@ -44,7 +44,7 @@ inline constexpr float kExrLargestHalf = 65504.0f;
 using ExrAttributeValue = std::variant<int, float, double, std::string>;
 
 /// One named attribute of the header. Names are what the caller chooses; glint-render's are
-/// "glint/..." (see the README), plus the standard "comments".
+/// "glint/..." (see docs/glint-render.md), plus the standard "comments".
 struct ExrAttribute {
   std::string name;
   ExrAttributeValue value;

@@ -34,7 +34,7 @@
 #include "glint/scene/scene_error.hpp"
 #include "load_progress.hpp"
 
-// GLINT_HAVE_EXR: the library links glint::exr (examples/CMakeLists.txt, when OpenEXR is found).
+// GLINT_HAVE_EXR: the library links glint::exr (apps/CMakeLists.txt, when OpenEXR is found).
 #ifdef GLINT_HAVE_EXR
 #include "glint/exr/exr_image.hpp"
 #endif
