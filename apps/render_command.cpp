@@ -97,7 +97,7 @@ constexpr std::string_view kOptionsAfterThreads =
 constexpr std::string_view kScalarHelpWavefront =
     R"(  --scalar            render with the scalar renderer (one path at a time) instead of
                       the wavefront renderer (batches of paths, stage by stage; the
-                      default): the same image up to noise, but not bit for bit
+                      default): the same image, bit for bit
 )";
 constexpr std::string_view kScalarHelpScalarOnly =
     R"(  --scalar            accepted, and changes nothing: this variant has the scalar

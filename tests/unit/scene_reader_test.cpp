@@ -668,9 +668,9 @@ TEST_CASE("scene reader: files", "[scene_reader][file]") {
       CHECK_THROWS_WITH(glint::read_scene_file("/dev/zero"),
                         StartsWith("/dev/zero:1: error: line contains a NUL byte"));
   }
-  SECTION("the complete example of the README's scene format") {
+  SECTION("the complete example of the scene format's reference") {
     // Keeps the documentation honest: the block after the marker must parse as documented.
-    std::ifstream in(fs::path(GLINT_SOURCE_DIR) / "README.md");
+    std::ifstream in(fs::path(GLINT_SOURCE_DIR) / "docs" / "scene-format.md");
     REQUIRE(in);
     const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::size_t marker = doc.find("<!-- complete example -->");
