@@ -21,7 +21,9 @@
 #include "glint/geometry/sphere_bvh.hpp"
 #include "glint/geometry/sphere_set.hpp"
 #include "glint/math/random.hpp"
+#include "glint/math/wide.hpp"
 #include "glint/policy/antialiasing.hpp"
+#include "glint/policy/concepts.hpp"
 #include "glint/policy/diffuse_sampling.hpp"
 #include "glint/policy/fresnel.hpp"
 #include "glint/policy/light_sampling.hpp"
@@ -199,6 +201,40 @@ BENCHMARK_TEMPLATE(BM_SamplerPath8x2d, Independent);
 BENCHMARK_TEMPLATE(BM_SamplerPath8x2d, Stratified);
 BENCHMARK_TEMPLATE(BM_SamplerPath8x2d, Sobol);
 BENCHMARK_TEMPLATE(BM_SamplerPath8x2d, HybridSobol6);
+
+/// BM_SamplerPath8x2d for W paths at once in the sampler's lane-wise form, every lane on: items
+/// are one path's draws, so the figure compares with BM_SamplerPath8x2d's directly.
+template <typename S, int W>
+requires glint::WideSamplerStart<S, W>
+void BM_SamplerWidePath8x2d(benchmark::State& state) {
+  typename S::template Wide<W> samplers;
+  const glint::Mask<W> all = glint::Mask<W>{} - 1;
+  std::uint32_t i = 0;
+  for (auto _ : state) {
+    std::uint32_t x[W], y[W], index[W];
+    for (int lane = 0; lane < W; ++lane) {
+      const std::uint32_t n = i * W + std::uint32_t(lane);
+      x[lane] = (n >> 4) & 63u;
+      y[lane] = n >> 10;
+      index[lane] = n & 15u;
+    }
+    const glint::PixelSamples<W> s{glint::load<glint::UInt<W>>(x), glint::load<glint::UInt<W>>(y),
+                                   glint::load<glint::UInt<W>>(index), 16, 12345};
+    samplers.start(all, s);
+    for (int d = 0; d < 8; ++d) {
+      auto u = samplers.next_2d(all);
+      benchmark::DoNotOptimize(u);
+    }
+    ++i;
+  }
+  state.SetItemsProcessed(state.iterations() * 8 * W);
+}
+BENCHMARK_TEMPLATE(BM_SamplerWidePath8x2d, Independent, 8);
+BENCHMARK_TEMPLATE(BM_SamplerWidePath8x2d, Independent, 16);
+BENCHMARK_TEMPLATE(BM_SamplerWidePath8x2d, Sobol, 8);
+BENCHMARK_TEMPLATE(BM_SamplerWidePath8x2d, Sobol, 16);
+BENCHMARK_TEMPLATE(BM_SamplerWidePath8x2d, HybridSobol6, 8);
+BENCHMARK_TEMPLATE(BM_SamplerWidePath8x2d, HybridSobol6, 16);
 
 // ---------------------------------------------------------------------------------------------
 // Diffuse bounce directions

@@ -1,7 +1,7 @@
 // What AVX2 adds to the eight-lane width for the wavefront renderer (math/lanes.hpp): masks as
-// bits, transposes, the packing of lanes into queues, 64-bit lanes; and the samplers' separate
-// eight-lane forms against their scalar forms, lane by lane. What is written once for every
-// width is checked in wide_test.cpp.
+// bits, transposes, the packing of lanes into queues, 64-bit lanes, a tile's samples in lanes.
+// What is written once for every width is checked in wide_test.cpp, and the samplers' lane-wise
+// forms in wide_sampler_test.cpp.
 
 #include <algorithm>
 #include <bit>
@@ -20,7 +20,6 @@
 #include "glint/policy/fresnel.hpp"
 #include "glint/policy/light_sampling.hpp"
 #include "glint/policy/path_termination.hpp"
-#include "glint/policy/sampler.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/wavefront/wavefront_execution.hpp"
 
@@ -130,123 +129,6 @@ TEST_CASE("Uint64Lanes gives each lane's low and high 32 bits", "[lanes][unit]")
     for (int i = 0; i < kLaneCount; ++i) {
       CHECK(low[i] == std::uint32_t(expected[i]));
       CHECK(high[i] == std::uint32_t(expected[i] >> 32));
-    }
-  }
-}
-
-TEMPLATE_TEST_CASE("a sampler's Lanes form draws bit for bit what the sampler draws, lane by lane",
-                   "[lanes][unit]", glint::IndependentSampler, glint::SobolSampler,
-                   glint::HybridSobolSampler<>, glint::HybridSobolSampler<6>) {
-  // Eight samplers at different pixels and sample indices; each round draws a 1D or a 2D value
-  // for a random subset of lanes, as the wavefront's stages do; the lanes left out must keep
-  // their state, so that their next draws still match.
-  glint::Pcg32 rng(2024, 12);
-  for (int trial = 0; trial < 64; ++trial) {
-    TestType scalar[kLaneCount];
-    typename TestType::Lanes lanes;
-    for (int i = 0; i < kLaneCount; ++i) {
-      scalar[i].start(glint::PixelSample{rng.next_u32() % 4096, rng.next_u32() % 4096,
-                                         rng.next_u32() % 1024, 1024, rng.next_u32()});
-      lanes.set_lane(i, scalar[i]);
-    }
-    for (int round = 0; round < 40; ++round) {
-      const std::uint32_t bits = rng.next_u32() & 0xffu;
-      const IntLanes mask = glint::lanes_of_bits(bits);
-      const bool two = (rng.next_u32() & 1u) != 0;
-      const Vec2Lanes drawn = two ? lanes.next_2d(mask) : Vec2Lanes{lanes.next_1d(mask), {}};
-      for (int i = 0; i < kLaneCount; ++i) {
-        if (!((bits >> i) & 1u)) continue;
-        INFO("trial " << trial << ", round " << round << ", lane " << i);
-        if (two) {
-          const Vec2 u = scalar[i].next_2d();
-          CHECK(same_bits(drawn.x[i], u.x));
-          CHECK(same_bits(drawn.y[i], u.y));
-        } else {
-          CHECK(same_bits(drawn.x[i], scalar[i].next_1d()));
-        }
-      }
-    }
-    // Stored back, each lane continues as its sampler does.
-    for (int i = 0; i < kLaneCount; ++i) {
-      TestType stored;
-      lanes.get_lane(i, stored);
-      CHECK(same_bits(stored.next_1d(), scalar[i].next_1d()));
-    }
-  }
-}
-
-namespace {
-
-/// Any 32-bit value, the ends of the range and small values included.
-std::uint32_t any_word(glint::Pcg32& rng) {
-  switch (rng.next_u32() % 8) {
-    case 0:
-      return 0;
-    case 1:
-      return ~std::uint32_t{0};
-    case 2:
-      return rng.next_u32() % 64;
-    default:
-      return rng.next_u32();
-  }
-}
-
-}  // namespace
-
-TEMPLATE_TEST_CASE("a sampler's Lanes form starts the lanes of a mask as the sampler starts",
-                   "[lanes][unit]", glint::IndependentSampler, glint::SobolSampler,
-                   glint::HybridSobolSampler<>, glint::HybridSobolSampler<6>) {
-  // The wavefront's camera stage starts the lanes of a block's mask, while the other lanes'
-  // paths are under way: every mask, from samplers that have drawn a while, at pixels, sample
-  // indices and seeds anywhere in their ranges.
-  glint::Pcg32 rng(2025, 7);
-  for (int trial = 0; trial < 16; ++trial) {
-    TestType before[kLaneCount];
-    typename TestType::Lanes under_way;
-    for (int i = 0; i < kLaneCount; ++i) {
-      before[i].start(
-          glint::PixelSample{rng.next_u32(), rng.next_u32(), rng.next_u32(), 16, rng.next_u32()});
-      for (std::uint32_t draws = rng.next_u32() % 12; draws > 0; --draws)
-        before[i].next_1d();
-      under_way.set_lane(i, before[i]);
-    }
-    for (std::uint32_t bits = 0; bits < 256; ++bits) {
-      INFO("trial " << trial << ", lanes " << bits);
-      glint::PixelSampleLanes sample;
-      sample.samples_per_pixel = 1 + rng.next_u32() % 1024;
-      sample.seed = (std::uint64_t{any_word(rng)} << 32) | any_word(rng);
-      TestType scalar[kLaneCount];
-      typename TestType::Lanes expected = under_way;
-      for (int i = 0; i < kLaneCount; ++i) {
-        sample.x[i] = any_word(rng);
-        sample.y[i] = any_word(rng);
-        sample.index[i] = any_word(rng);
-        scalar[i] = before[i];
-        if (!((bits >> i) & 1u)) continue;
-        scalar[i].start(glint::PixelSample{sample.x[i], sample.y[i], sample.index[i],
-                                           sample.samples_per_pixel, sample.seed});
-        expected.set_lane(i, scalar[i]);
-      }
-      typename TestType::Lanes lanes = under_way;
-      lanes.start(glint::lanes_of_bits(bits), sample);
-      // The Lanes forms are vectors only, without padding: the same state is the same bytes.
-      CHECK(std::memcmp(&lanes, &expected, sizeof lanes) == 0);
-      // Every lane then draws what its sampler draws: the started ones and the others.
-      const IntLanes all = glint::lanes_of_bits(0xffu);
-      for (int round = 0; round < 10; ++round) {
-        const bool two = round % 3 == 1;
-        const Vec2Lanes drawn = two ? lanes.next_2d(all) : Vec2Lanes{lanes.next_1d(all), {}};
-        for (int i = 0; i < kLaneCount; ++i) {
-          INFO("round " << round << ", lane " << i);
-          if (two) {
-            const Vec2 u = scalar[i].next_2d();
-            CHECK(same_bits(drawn.x[i], u.x));
-            CHECK(same_bits(drawn.y[i], u.y));
-          } else {
-            CHECK(same_bits(drawn.x[i], scalar[i].next_1d()));
-          }
-        }
-      }
     }
   }
 }

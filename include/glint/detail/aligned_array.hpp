@@ -1,6 +1,7 @@
 #pragma once
 // A std::vector whose storage is aligned for 32-byte (AVX) loads, for the structure-of-arrays
-// columns of the SIMD kernels.
+// columns of the SIMD kernels, or to its element's own alignment where that is larger (a
+// 64-byte AVX-512 vector).
 
 #include <cstddef>
 #include <new>
@@ -14,10 +15,11 @@ struct AlignedAllocator {
   AlignedAllocator() = default;
   template <typename U>
   AlignedAllocator(const AlignedAllocator<U>&) {}
+  static constexpr std::size_t kAlignment = alignof(T) > 32 ? alignof(T) : 32;
   T* allocate(std::size_t n) {
-    return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(32)));
+    return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(kAlignment)));
   }
-  void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t(32)); }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t(kAlignment)); }
   bool operator==(const AlignedAllocator&) const { return true; }
 };
 

@@ -6,18 +6,14 @@
 #include <concepts>
 #include <cstdint>
 
-#include "glint/math/lanes.hpp"
+#include "glint/math/wide.hpp"
 
 namespace glint {
 
-/// A 32-bit word, or eight of them in SIMD lanes (UintLanes, with AVX2): the bit operations
-/// below are written once for both, so the samplers' lane-wise draws are their scalar ones.
+/// A 32-bit word, or W of them in lanes (UInt<W>): the bit operations below are written once
+/// for every width, so the samplers' lane-wise draws are their scalar ones.
 template <typename U>
-concept Words32 = std::same_as<U, std::uint32_t>
-#if defined(GLINT_AVX2)
-    || std::same_as<U, UintLanes>
-#endif
-    ;
+concept Words32 = std::same_as<U, UInt<1>> || std::same_as<U, UInt<8>> || std::same_as<U, UInt<16>>;
 
 namespace detail {
 
@@ -87,15 +83,10 @@ constexpr std::uint32_t sobol_second_dimension(std::uint32_t index) {
 /// Karras 2012; Burley 2020): every step changes digit k only by a function of the digits
 /// less significant than it, which makes the whole an Owen scramble (preserving every
 /// (t, m, s)-net property). Returns the digits still reversed.
-constexpr std::uint32_t owen_scramble_reversed(std::uint32_t v, std::uint64_t key) {
-  return detail::owen_scramble_halves(v, static_cast<std::uint32_t>(key),
-                                      static_cast<std::uint32_t>(key >> 32));
+template <Words32 U>
+constexpr U owen_scramble_reversed(U v, UInt64For<U> key) {
+  return detail::owen_scramble_halves(v, low_bits(key), high_bits(key));
 }
-#if defined(GLINT_AVX2)
-inline UintLanes owen_scramble_reversed(UintLanes v, const Uint64Lanes& key) {
-  return detail::owen_scramble_halves(v, key.low_bits(), key.high_bits());
-}
-#endif
 
 /// An Owen scramble of a binary fraction in ordinary order (bit 31 the first digit).
 constexpr std::uint32_t owen_scramble(std::uint32_t fraction, std::uint64_t key) {

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
+#include <utility>
 
 #include "glint/math/vector.hpp"
 
@@ -363,6 +364,222 @@ inline Vector3<F> select(M mask, const Vector3<F>& if_true, const Vector3<F>& if
 }
 inline Vec3 select(bool mask, const Vec3& if_true, const Vec3& if_false) {
   return mask ? if_true : if_false;
+}
+
+}  // namespace glint
+
+// ---- 64-bit lanes ----------------------------------------------------------------------------
+// UInt64<W>: W lanes of 64-bit unsigned integers, for the samplers' hashes and generators.
+// Integer arithmetic wraps modulo 2^64 in every lane, so a hash computed in lanes is bit for bit
+// the one computed at width 1 (std::uint64_t). Wider, the lanes are held in pieces of one
+// register each: 8 lanes with AVX-512 (whose DQ extension multiplies 64-bit lanes in one
+// instruction), 4 with AVX2 (three 32-bit multiplications each), 2 otherwise. Pieces rather than
+// one vector type of W lanes, because GCC keeps a vector type wider than the registers in
+// memory and copies it through general registers when it is a class member: the samplers' draws
+// then cost half as much again with AVX2.
+
+namespace glint {
+
+namespace detail {
+
+#if defined(__AVX512F__)
+inline constexpr int kPiece64Lanes = 8;
+using Piece64 = std::uint64_t __attribute__((vector_size(64)));
+using Piece64Signed = std::int64_t __attribute__((vector_size(64)));
+using Piece32 = std::uint32_t __attribute__((vector_size(32)));
+#elif defined(__AVX2__)
+inline constexpr int kPiece64Lanes = 4;
+using Piece64 = std::uint64_t __attribute__((vector_size(32)));
+using Piece64Signed = std::int64_t __attribute__((vector_size(32)));
+using Piece32 = std::uint32_t __attribute__((vector_size(16)));
+#else
+inline constexpr int kPiece64Lanes = 2;
+using Piece64 = std::uint64_t __attribute__((vector_size(16)));
+using Piece64Signed = std::int64_t __attribute__((vector_size(16)));
+using Piece32 = std::uint32_t __attribute__((vector_size(8)));
+#endif
+
+/// Lanes k*P .. k*P + P - 1 of a vector (P = kPiece64Lanes).
+template <int K, typename V>
+inline auto piece_of(V v) {
+  return [&]<int... I>(std::integer_sequence<int, I...>) {
+    return __builtin_shufflevector(v, v, (K * kPiece64Lanes + I)...);
+  }
+  (std::make_integer_sequence<int, kPiece64Lanes>{});
+}
+
+/// W 64-bit lanes in W / kPiece64Lanes registers.
+template <int W>
+struct Lanes64 {
+  static constexpr int kPieces = W / kPiece64Lanes;
+  Piece64 piece[kPieces];
+
+  /// f(piece k of a, k) for each piece, k a std::integral_constant.
+  template <typename F>
+  static Lanes64 map(const Lanes64& a, F f) {
+    Lanes64 r;
+    [&]<int... K>(std::integer_sequence<int, K...>) {
+      ((r.piece[K] = f(a.piece[K], std::integral_constant<int, K>{})), ...);
+    }
+    (std::make_integer_sequence<int, kPieces>{});
+    return r;
+  }
+
+  std::uint64_t operator[](int i) const { return piece[i / kPiece64Lanes][i % kPiece64Lanes]; }
+
+  friend Lanes64 operator+(const Lanes64& a, const Lanes64& b) {
+    return map(a, [&](Piece64 p, auto k) { return p + b.piece[k]; });
+  }
+  friend Lanes64 operator*(const Lanes64& a, const Lanes64& b) {
+    return map(a, [&](Piece64 p, auto k) { return p * b.piece[k]; });
+  }
+  friend Lanes64 operator^(const Lanes64& a, const Lanes64& b) {
+    return map(a, [&](Piece64 p, auto k) { return p ^ b.piece[k]; });
+  }
+  friend Lanes64 operator|(const Lanes64& a, const Lanes64& b) {
+    return map(a, [&](Piece64 p, auto k) { return p | b.piece[k]; });
+  }
+  friend Lanes64 operator&(const Lanes64& a, const Lanes64& b) {
+    return map(a, [&](Piece64 p, auto k) { return p & b.piece[k]; });
+  }
+  friend Lanes64 operator+(const Lanes64& a, std::uint64_t b) {
+    return map(a, [&](Piece64 p, auto) { return p + b; });
+  }
+  friend Lanes64 operator*(const Lanes64& a, std::uint64_t b) {
+    return map(a, [&](Piece64 p, auto) { return p * b; });
+  }
+  friend Lanes64 operator^(const Lanes64& a, std::uint64_t b) {
+    return map(a, [&](Piece64 p, auto) { return p ^ b; });
+  }
+  friend Lanes64 operator|(const Lanes64& a, std::uint64_t b) {
+    return map(a, [&](Piece64 p, auto) { return p | b; });
+  }
+  friend Lanes64 operator>>(const Lanes64& a, int shift) {
+    return map(a, [&](Piece64 p, auto) { return p >> shift; });
+  }
+  friend Lanes64 operator<<(const Lanes64& a, int shift) {
+    return map(a, [&](Piece64 p, auto) { return p << shift; });
+  }
+  Lanes64& operator^=(const Lanes64& b) { return *this = *this ^ b; }
+  Lanes64& operator*=(std::uint64_t b) { return *this = *this * b; }
+};
+
+template <int W>
+struct LaneTypes64 {
+  using UInt64 = Lanes64<W>;
+};
+template <>
+struct LaneTypes64<1> {
+  using UInt64 = std::uint64_t;
+};
+
+}  // namespace detail
+
+template <int W>
+using UInt64 = typename detail::LaneTypes64<W>::UInt64;
+
+/// Whether T is one of the UInt64 types.
+template <typename T>
+concept UInt64Type =
+    std::is_same_v<T, UInt64<1>> || std::is_same_v<T, UInt64<8>> || std::is_same_v<T, UInt64<16>>;
+
+/// The number of lanes of a UInt64 type (kLanesOf counts 32-bit lanes).
+template <UInt64Type T>
+inline constexpr int kLanes64Of = int(sizeof(T) / 8);
+
+/// The UInt64 type with as many lanes as the Float, Int or UInt type T.
+template <typename T>
+using UInt64For = UInt64<kLanesOf<T>>;
+
+/// `value` in every lane of a UInt64 type.
+template <UInt64Type U>
+constexpr U splat64(std::uint64_t value) {
+  return U{} + value;
+}
+
+/// Lane i of UInt64<W> set to `to` (glint::lane reads it).
+template <int W, typename S>
+inline void set_lane(detail::Lanes64<W>& value, int i, S to) {
+  value.piece[i / detail::kPiece64Lanes][i % detail::kPiece64Lanes] = std::uint64_t(to);
+}
+
+/// A UInt's lanes zero-extended to 64 bits.
+template <typename U>
+requires std::is_same_v<U, UInt<kLanesOf<U>>>
+constexpr UInt64For<U> widen(U value) {
+  if constexpr (kLanesOf<U> == 1) {
+    return std::uint64_t{value};
+  } else {
+    using Result = UInt64For<U>;
+    return Result::map(Result{}, [&](detail::Piece64, auto k) {
+      return __builtin_convertvector(detail::piece_of<k()>(value), detail::Piece64);
+    });
+  }
+}
+
+/// The low 32 bits of each lane, and the high ones.
+template <UInt64Type U>
+constexpr UInt<kLanes64Of<U>> low_bits(const U& value) {
+  constexpr int kWidth = kLanes64Of<U>;
+  if constexpr (kWidth == 1) {
+    return static_cast<std::uint32_t>(value);
+  } else if constexpr (U::kPieces == 1) {
+    return __builtin_convertvector(value.piece[0], UInt<kWidth>);
+#if defined(__AVX512F__)
+  } else if constexpr (U::kPieces == 2) {
+    // The even 32-bit words of the two pieces, in one permutation (vpermt2d). Narrowing each
+    // piece and joining the halves would go through memory, where the 64-byte load of two
+    // 32-byte stores stalls.
+    using Words = std::uint32_t __attribute__((vector_size(64)));
+    const auto low = std::bit_cast<Words>(value.piece[0]);
+    const auto high = std::bit_cast<Words>(value.piece[1]);
+    return __builtin_shufflevector(low, high, 0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28,
+                                   30);
+#endif
+#if defined(__AVX2__) && !defined(__AVX512F__)
+  } else if constexpr (U::kPieces == 2 || U::kPieces == 4) {
+    // Without AVX-512's narrowing moves GCC takes five shuffles for eight lanes; two do it: the
+    // even 32-bit words of two pieces, then their 64-bit pairs in lane order.
+    const auto eight = [&](int k) {
+      const __m256 words =
+          _mm256_shuffle_ps(_mm256_castsi256_ps(__m256i(value.piece[k])),
+                            _mm256_castsi256_ps(__m256i(value.piece[k + 1])), 0b10'00'10'00);
+      return std::bit_cast<UInt<8>>(
+          _mm256_permute4x64_epi64(_mm256_castps_si256(words), 0b11'01'10'00));
+    };
+    if constexpr (U::kPieces == 2) {
+      return eight(0);
+    } else {
+      const UInt<8> low = eight(0), high = eight(2);
+      return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14,
+                                     15);
+    }
+#endif
+  } else {
+    UInt<kWidth> result{};
+    for (int k = 0; k < U::kPieces; ++k) {
+      const detail::Piece32 piece = __builtin_convertvector(value.piece[k], detail::Piece32);
+      std::memcpy(reinterpret_cast<char*>(&result) + k * int(sizeof piece), &piece, sizeof piece);
+    }
+    return result;
+  }
+}
+template <UInt64Type U>
+constexpr UInt<kLanes64Of<U>> high_bits(const U& value) {
+  return low_bits(U(value >> 32));
+}
+
+/// `if_true` in the lanes where `mask` is true, `if_false` in the others (width 1: the
+/// select(bool, T, T) above).
+template <WideNumber M, int W>
+requires(kLanesOf<M> == W) inline detail::Lanes64<W> select(M mask,
+                                                            const detail::Lanes64<W>& if_true,
+                                                            const detail::Lanes64<W>& if_false) {
+  return detail::Lanes64<W>::map(if_true, [&](detail::Piece64 t, auto k) {
+    const auto wide = std::bit_cast<detail::Piece64>(
+        __builtin_convertvector(detail::piece_of<k()>(mask), detail::Piece64Signed));
+    return (t & wide) | (if_false.piece[k] & ~wide);
+  });
 }
 
 }  // namespace glint

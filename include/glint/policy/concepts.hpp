@@ -6,35 +6,26 @@
 #include <concepts>
 #include <cstdint>
 
-#include "glint/math/lanes.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/scene/material.hpp"
 
 namespace glint {
 
-/// Identifies one sample of one pixel; samplers derive all their randomness from it, so the
-/// image does not depend on which thread renders which pixel.
-struct PixelSample {
-  std::uint32_t x = 0;
-  std::uint32_t y = 0;
-  std::uint32_t index = 0;              ///< sample number within the pixel, 0 .. count-1
+/// Identifies one sample of one pixel, or (W > 1) one in each of W lanes; samplers derive all
+/// their randomness from it, so the image does not depend on which thread renders which pixel.
+/// The count and the seed are the render's, the same in every lane, so that what depends on the
+/// seed alone is hashed once for all lanes.
+template <int W>
+struct PixelSamples {
+  UInt<W> x{};
+  UInt<W> y{};
+  UInt<W> index{};                      ///< sample number within the pixel, 0 .. count-1
   std::uint32_t samples_per_pixel = 1;  ///< lets stratified samplers plan their strata
   std::uint64_t seed = 0;
 };
-
-#if defined(GLINT_AVX2)
-/// Eight PixelSamples of one render, for the wavefront renderer's lane-wise sampler start:
-/// the pixel and the sample index lane by lane; the count and the seed are the render's, the
-/// same in every lane, so that what depends on the seed alone is hashed once for the eight.
-struct PixelSampleLanes {
-  UintLanes x{};
-  UintLanes y{};
-  UintLanes index{};
-  std::uint32_t samples_per_pixel = 1;
-  std::uint64_t seed = 0;
-};
-#endif
+using PixelSample = PixelSamples<1>;
+using PixelSampleLanes = PixelSamples<8>;
 
 /// Where sample values come from: a stream of values in [0,1), dimension by dimension.
 template <typename S>
@@ -43,6 +34,26 @@ concept Sampler = std::default_initializable<S> && std::copyable<S> &&
   sampler.start(pixel_sample);
   { sampler.next_1d() } -> std::same_as<float>;
   { sampler.next_2d() } -> std::same_as<Vec2>;
+};
+
+/// A sampler with a form that draws for W paths at once, one per lane: S::template Wide<W>,
+/// which loads and stores lane i from and to a sampler and draws for the lanes of a mask (the
+/// others keep their state), each lane drawing exactly what its sampler would.
+template <typename S, int W>
+concept WideSampler = Sampler<S> &&
+    requires(typename S::template Wide<W> lanes, const S& from, S& to, Mask<W> mask) {
+  lanes.set_lane(0, from);
+  lanes.get_lane(0, to);
+  { lanes.next_1d(mask) } -> std::same_as<Float<W>>;
+  { lanes.next_2d(mask) } -> std::same_as<Vec2For<Float<W>>>;
+};
+
+/// A WideSampler whose Wide form also starts the lanes of a mask at once, each as S::start
+/// would with that lane's PixelSample.
+template <typename S, int W>
+concept WideSamplerStart = WideSampler<S, W> &&
+    requires(typename S::template Wide<W> lanes, Mask<W> mask, const PixelSamples<W>& s) {
+  lanes.start(mask, s);
 };
 
 /// A diffuse bounce direction in the local frame (z = normal) and its weight cos(theta)/pdf,

@@ -1,9 +1,11 @@
 #pragma once
 // Sobol' for the first requests of a sample, independent values after.
 
+#include <bit>
 #include <cstdint>
 
 #include "glint/math/random.hpp"
+#include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 #include "glint/policy/sampler/sobol.hpp"
 
@@ -16,58 +18,49 @@ namespace glint {
 template <std::uint32_t kSobolRequests = 4>
 class HybridSobolSampler {
  public:
-  void start(const PixelSample& s) {
-    sobol_.start(s);
-    rng_.reseed(hash_values(s.x, s.y, s.index, s.seed, 0x50b01u), hash_values(s.seed));
-    requests_ = 0;
-  }
-  float next_1d() { return requests_++ < kSobolRequests ? sobol_.next_1d() : rng_.next_float(); }
-  Vec2 next_2d() {
-    if (requests_++ < kSobolRequests) return sobol_.next_2d();
-    const float u = rng_.next_float();
-    return {u, rng_.next_float()};
-  }
-
-#if defined(GLINT_AVX2)
-  /// Eight samplers, one per lane: each lane's request goes to Sobol' or to PCG32 as that
-  /// lane's own count of requests says, and a part is computed only if some lane needs it.
-  class Lanes {
+  /// W samplers, one per lane, each drawing what a HybridSobolSampler draws: each lane's
+  /// request goes to Sobol' or to PCG32 as that lane's own count of requests says, and a part
+  /// is computed only if some lane needs it. A lane outside a call's mask keeps its state. The
+  /// sampler itself is the width-1 form with every lane on.
+  template <int W>
+  class Wide {
    public:
-    void set_lane(int i, const HybridSobolSampler& s) {
-      sobol_.set_lane(i, s.sobol_);
-      rng_.set_lane(i, s.rng_);
-      requests_[i] = s.requests_;
+    void set_lane(int i, const HybridSobolSampler& s) { set_lane(i, s.state_); }
+    void get_lane(int i, HybridSobolSampler& s) const { get_lane(i, s.state_); }
+    void set_lane(int i, const Wide<1>& one) {
+      sobol_.set_lane(i, one.sobol_);
+      rng_.set_lane(i, one.rng_);
+      glint::set_lane(requests_, i, one.requests_);
     }
-    void get_lane(int i, HybridSobolSampler& s) const {
-      sobol_.get_lane(i, s.sobol_);
-      rng_.get_lane(i, s.rng_);
-      s.requests_ = requests_[i];
+    void get_lane(int i, Wide<1>& one) const {
+      sobol_.get_lane(i, one.sobol_);
+      rng_.get_lane(i, one.rng_);
+      one.requests_ = lane(requests_, i);
     }
-    /// HybridSobolSampler::start for the lanes of `mask`; the others keep their state.
-    void start(IntLanes mask, const PixelSampleLanes& s) {
+    /// HybridSobolSampler::start for the lanes of `mask`.
+    void start(Mask<W> mask, const PixelSamples<W>& s) {
       sobol_.start(mask, s);
-      rng_.reseed(mask, hash_lanes(s.x, s.y, s.index, s.seed, 0x50b01u),
-                  Uint64Lanes::broadcast(hash_values(s.seed)));
-      requests_ = select(mask, UintLanes{}, requests_);
+      rng_.reseed(mask, hash_lanes<W>(s.x, s.y, s.index, s.seed, 0x50b01u),
+                  splat64<UInt64<W>>(hash_values(s.seed)));
+      requests_ = select(mask, UInt<W>{}, requests_);
     }
-    FloatLanes next_1d(IntLanes mask) {
-      const IntLanes sobol = mask & by_sobol();
-      const IntLanes independent = mask & ~sobol;
-      requests_ = select(mask, requests_ + 1u, requests_);
-      FloatLanes value = broadcast(0.0f);
-      if (lane_bits(sobol) != 0) value = sobol_.next_1d(sobol);
-      if (lane_bits(independent) != 0)
-        value = select(independent, rng_.next_float(independent), value);
+    Float<W> next_1d(Mask<W> mask) {
+      const Mask<W> sobol = select(by_sobol(), mask, Mask<W>{});
+      const Mask<W> independent = select(sobol, Mask<W>{}, mask);
+      requests_ = select(mask, UInt<W>(requests_ + 1u), requests_);
+      Float<W> value{};
+      if (any(sobol)) value = sobol_.next_1d(sobol);
+      if (any(independent)) value = select(independent, rng_.next_float(independent), value);
       return value;
     }
-    Vec2Lanes next_2d(IntLanes mask) {
-      const IntLanes sobol = mask & by_sobol();
-      const IntLanes independent = mask & ~sobol;
-      requests_ = select(mask, requests_ + 1u, requests_);
-      Vec2Lanes value{broadcast(0.0f), broadcast(0.0f)};
-      if (lane_bits(sobol) != 0) value = sobol_.next_2d(sobol);
-      if (lane_bits(independent) != 0) {
-        const FloatLanes u = rng_.next_float(independent);
+    Vec2For<Float<W>> next_2d(Mask<W> mask) {
+      const Mask<W> sobol = select(by_sobol(), mask, Mask<W>{});
+      const Mask<W> independent = select(sobol, Mask<W>{}, mask);
+      requests_ = select(mask, UInt<W>(requests_ + 1u), requests_);
+      Vec2For<Float<W>> value{Float<W>{}, Float<W>{}};
+      if (any(sobol)) value = sobol_.next_2d(sobol);
+      if (any(independent)) {
+        const Float<W> u = rng_.next_float(independent);
         value = {select(independent, u, value.x),
                  select(independent, rng_.next_float(independent), value.y)};
       }
@@ -75,21 +68,27 @@ class HybridSobolSampler {
     }
 
    private:
-    IntLanes by_sobol() const {
-      // requests_ < kSobolRequests, unsigned: both below 2^31, so the signed comparison agrees.
-      return std::bit_cast<IntLanes>(requests_) < std::int32_t(kSobolRequests);
+    template <int>
+    friend class Wide;
+
+    Mask<W> by_sobol() const {
+      // requests_ < kSobolRequests, unsigned: both below 2^31, so the signed comparison (one
+      // instruction in SIMD lanes) agrees.
+      return std::bit_cast<Int<W>>(requests_) < std::int32_t(kSobolRequests);
     }
 
-    typename SobolSampler::Lanes sobol_;
-    Pcg32::Lanes rng_;
-    UintLanes requests_{};
+    typename SobolSampler::template Wide<W> sobol_;
+    Pcg32::Wide<W> rng_;
+    UInt<W> requests_{};
   };
-#endif
+  using Lanes = Wide<8>;
+
+  void start(const PixelSample& s) { state_.start(true, s); }
+  float next_1d() { return state_.next_1d(true); }
+  Vec2 next_2d() { return state_.next_2d(true); }
 
  private:
-  SobolSampler sobol_;
-  Pcg32 rng_;
-  std::uint32_t requests_ = 0;
+  Wide<1> state_;
 };
 static_assert(Sampler<HybridSobolSampler<>>);
 

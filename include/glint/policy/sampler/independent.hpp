@@ -2,6 +2,7 @@
 // The report's sampler: independent values from a hashed PCG32 stream.
 
 #include "glint/math/random.hpp"
+#include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 
 namespace glint {
@@ -10,39 +11,38 @@ namespace glint {
 /// the report's sampler, and the baseline for the others.
 class IndependentSampler {
  public:
-  void start(const PixelSample& s) {
-    rng_.reseed(hash_values(s.x, s.y, s.index, s.seed), hash_values(s.seed));
-  }
-  float next_1d() { return rng_.next_float(); }
-  Vec2 next_2d() {
-    const float u = rng_.next_float();
-    return {u, rng_.next_float()};
-  }
-
-#if defined(GLINT_AVX2)
-  /// Eight samplers, one per lane; a lane outside a draw's mask keeps its state.
-  class Lanes {
+  /// W samplers, one per lane, each drawing what an IndependentSampler draws; a lane outside a
+  /// call's mask keeps its state. The sampler itself is the width-1 form with every lane on.
+  template <int W>
+  class Wide {
    public:
-    void set_lane(int i, const IndependentSampler& s) { rng_.set_lane(i, s.rng_); }
-    void get_lane(int i, IndependentSampler& s) const { rng_.get_lane(i, s.rng_); }
-    /// IndependentSampler::start for the lanes of `mask`; the others keep their state.
-    void start(IntLanes mask, const PixelSampleLanes& s) {
-      rng_.reseed(mask, hash_lanes(s.x, s.y, s.index, s.seed),
-                  Uint64Lanes::broadcast(hash_values(s.seed)));
+    void set_lane(int i, const IndependentSampler& s) { rng_.set_lane(i, s.state_.rng_); }
+    void get_lane(int i, IndependentSampler& s) const { rng_.get_lane(i, s.state_.rng_); }
+    /// IndependentSampler::start for the lanes of `mask`.
+    void start(Mask<W> mask, const PixelSamples<W>& s) {
+      rng_.reseed(mask, hash_lanes<W>(s.x, s.y, s.index, s.seed),
+                  splat64<UInt64<W>>(hash_values(s.seed)));
     }
-    FloatLanes next_1d(IntLanes mask) { return rng_.next_float(mask); }
-    Vec2Lanes next_2d(IntLanes mask) {
-      const FloatLanes u = rng_.next_float(mask);
+    Float<W> next_1d(Mask<W> mask) { return rng_.next_float(mask); }
+    Vec2For<Float<W>> next_2d(Mask<W> mask) {
+      const Float<W> u = rng_.next_float(mask);
       return {u, rng_.next_float(mask)};
     }
 
    private:
-    Pcg32::Lanes rng_;
+    template <int>
+    friend class Wide;
+
+    Pcg32::Wide<W> rng_;
   };
-#endif
+  using Lanes = Wide<8>;
+
+  void start(const PixelSample& s) { state_.start(true, s); }
+  float next_1d() { return state_.next_1d(true); }
+  Vec2 next_2d() { return state_.next_2d(true); }
 
  private:
-  Pcg32 rng_;
+  Wide<1> state_;
 };
 static_assert(Sampler<IndependentSampler>);
 

@@ -1,9 +1,11 @@
 #pragma once
-// The keys a sampler derives its randomness from: one per (pixel, seed), one per dimension.
+// The keys a sampler derives its randomness from: one per (pixel, seed), one per dimension; for
+// one sample or for lanes of them (UInt<W> pixels and dimensions, UInt64<W> keys).
 
 #include <cstdint>
 
 #include "glint/math/random.hpp"
+#include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 
 namespace glint {
@@ -12,32 +14,20 @@ namespace detail {
 
 /// One key per (pixel, seed). The two inner hashes are independent, so their latencies
 /// overlap: cheaper than hashing the three values in sequence, which start() would pay for
-/// every sample.
-constexpr std::uint64_t pixel_key(const PixelSample& s) {
-  const std::uint64_t pixel = (std::uint64_t{s.y} << 32) | s.x;
-  return mix_bits(mix_bits(pixel) ^ mix_bits(s.seed + kGoldenGamma));
+/// every sample. The seed's hash is the same in every lane, computed once.
+template <int W>
+constexpr UInt64<W> pixel_key(const PixelSamples<W>& s) {
+  const UInt64<W> pixel = (widen(s.y) << 32) | widen(s.x);
+  return mix_bits(UInt64<W>(mix_bits(pixel) ^ mix_bits(s.seed + kGoldenGamma)));
 }
-#if defined(GLINT_AVX2)
-inline Uint64Lanes pixel_key(const PixelSampleLanes& s) {
-  const Uint64Lanes pixel = (Uint64Lanes::from(s.y) << 32) | Uint64Lanes::from(s.x);
-  return mix_bits(mix_bits(pixel) ^ Uint64Lanes::broadcast(mix_bits(s.seed + kGoldenGamma)));
-}
-#endif
 
 /// A key for one dimension of one pixel. mix_bits is a bijection, so distinct dimensions of a
 /// pixel never share a key, and its avalanche decorrelates neighbouring ones.
-constexpr std::uint64_t dimension_key(std::uint64_t pixel_key, std::uint32_t dimension,
-                                      std::uint32_t salt = 0) {
-  return mix_bits(pixel_key + (std::uint64_t{dimension} * 4 + salt + 1) * kGoldenGamma);
+template <UInt64Type K, typename D>
+constexpr K dimension_key(K pixel_key, D dimension, std::uint32_t salt = 0) {
+  return mix_bits(
+      K(pixel_key + (widen(dimension) * 4u + (std::uint64_t{salt} + 1)) * kGoldenGamma));
 }
-#if defined(GLINT_AVX2)
-inline Uint64Lanes dimension_key(const Uint64Lanes& pixel_key, UintLanes dimension,
-                                 std::uint32_t salt) {
-  const Uint64Lanes d = Uint64Lanes::from(dimension);
-  return mix_bits(pixel_key + ((d << 2) + Uint64Lanes::broadcast(std::uint64_t{salt} + 1)) *
-                                  Uint64Lanes::broadcast(kGoldenGamma));
-}
-#endif
 
 }  // namespace detail
 

@@ -5,6 +5,7 @@
 
 #include "glint/math/random.hpp"
 #include "glint/math/sobol.hpp"
+#include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 #include "glint/policy/sampler/sample_keys.hpp"
 
@@ -26,100 +27,77 @@ namespace glint {
 /// No tables: the second dimension's generator matrix is computed (sobol_second_dimension).
 class SobolSampler {
  public:
-  void start(const PixelSample& s) {
-    reversed_index_ = detail::reverse_bits(s.index);
-    pixel_key_ = detail::pixel_key(s);
-    dimension_ = 0;
-  }
-
-  float next_1d() {
-    const std::uint32_t dimension = dimension_++;
-    const std::uint32_t index = shuffled_index(dimension);
-    return to_float(owen_scramble_reversed(index, detail::dimension_key(pixel_key_, dimension, 1)));
-  }
-
-  Vec2 next_2d() {
-    const std::uint32_t dimension = dimension_++;
-    const std::uint32_t index = shuffled_index(dimension);
-    // Both coordinates stay in reversed digit order until the scramble is done: the first
-    // dimension's reversed digits are the index itself, which saves two reversals.
-    const std::uint32_t x =
-        owen_scramble_reversed(index, detail::dimension_key(pixel_key_, dimension, 1));
-    const std::uint32_t y = owen_scramble_reversed(sobol_second_dimension_reversed(index),
-                                                   detail::dimension_key(pixel_key_, dimension, 2));
-    return {to_float(x), to_float(y)};
-  }
-
-#if defined(GLINT_AVX2)
-  /// Eight samplers, one per lane, drawing the same values as eight SobolSamplers would: the
-  /// hashes are integer arithmetic, exact in SIMD lanes. A lane outside a draw's mask keeps its
-  /// state.
-  class Lanes {
+  /// W samplers, one per lane, each drawing what a SobolSampler draws (the hashes are integer
+  /// arithmetic, exact in every lane); a lane outside a call's mask keeps its state. The sampler
+  /// itself is the width-1 form with every lane on.
+  template <int W>
+  class Wide {
    public:
-    void set_lane(int i, const SobolSampler& s) {
-      pixel_key_.set_lane(i, s.pixel_key_);
-      reversed_index_[i] = s.reversed_index_;
-      dimension_[i] = s.dimension_;
+    void set_lane(int i, const SobolSampler& s) { set_lane(i, s.state_); }
+    void get_lane(int i, SobolSampler& s) const { get_lane(i, s.state_); }
+    void set_lane(int i, const Wide<1>& one) {
+      glint::set_lane(pixel_key_, i, one.pixel_key_);
+      glint::set_lane(reversed_index_, i, one.reversed_index_);
+      glint::set_lane(dimension_, i, one.dimension_);
     }
-    void get_lane(int i, SobolSampler& s) const {
-      s.pixel_key_ = pixel_key_.lane(i);
-      s.reversed_index_ = reversed_index_[i];
-      s.dimension_ = dimension_[i];
+    void get_lane(int i, Wide<1>& one) const {
+      one.pixel_key_ = lane(pixel_key_, i);
+      one.reversed_index_ = lane(reversed_index_, i);
+      one.dimension_ = lane(dimension_, i);
     }
-    /// SobolSampler::start for the lanes of `mask`; the others keep their state.
-    void start(IntLanes mask, const PixelSampleLanes& s) {
+    /// SobolSampler::start for the lanes of `mask`.
+    void start(Mask<W> mask, const PixelSamples<W>& s) {
       reversed_index_ = select(mask, detail::reverse_bits(s.index), reversed_index_);
       pixel_key_ = select(mask, detail::pixel_key(s), pixel_key_);
-      dimension_ = select(mask, UintLanes{}, dimension_);
+      dimension_ = select(mask, UInt<W>{}, dimension_);
     }
-    FloatLanes next_1d(IntLanes mask) {
-      const UintLanes dimension = advance(mask);
-      return to_floats(owen_scramble_reversed(shuffled_index(dimension),
-                                              detail::dimension_key(pixel_key_, dimension, 1)));
+    Float<W> next_1d(Mask<W> mask) {
+      const UInt<W> dimension = advance(mask);
+      return to_unit_float(owen_scramble_reversed(shuffled_index(dimension),
+                                                  detail::dimension_key(pixel_key_, dimension, 1)));
     }
-    Vec2Lanes next_2d(IntLanes mask) {
-      const UintLanes dimension = advance(mask);
-      const UintLanes index = shuffled_index(dimension);
-      const UintLanes x =
+    Vec2For<Float<W>> next_2d(Mask<W> mask) {
+      const UInt<W> dimension = advance(mask);
+      const UInt<W> index = shuffled_index(dimension);
+      // Both coordinates stay in reversed digit order until the scramble is done: the first
+      // dimension's reversed digits are the index itself, which saves two reversals.
+      const UInt<W> x =
           owen_scramble_reversed(index, detail::dimension_key(pixel_key_, dimension, 1));
-      const UintLanes y = owen_scramble_reversed(sobol_second_dimension_reversed(index),
-                                                 detail::dimension_key(pixel_key_, dimension, 2));
-      return {to_floats(x), to_floats(y)};
+      const UInt<W> y = owen_scramble_reversed(sobol_second_dimension_reversed(index),
+                                               detail::dimension_key(pixel_key_, dimension, 2));
+      return {to_unit_float(x), to_unit_float(y)};
     }
 
    private:
-    UintLanes advance(IntLanes mask) {
-      const UintLanes dimension = dimension_;
-      dimension_ = select(mask, dimension + 1u, dimension);
+    template <int>
+    friend class Wide;
+
+    UInt<W> advance(Mask<W> mask) {
+      const UInt<W> dimension = dimension_;
+      dimension_ = select(mask, UInt<W>(dimension + 1u), dimension);
       return dimension;
     }
-    UintLanes shuffled_index(UintLanes dimension) const {
+    UInt<W> shuffled_index(UInt<W> dimension) const {
+      // owen_scramble(index), with the index's reversal done once in start().
       return detail::reverse_bits(
           owen_scramble_reversed(reversed_index_, detail::dimension_key(pixel_key_, dimension, 0)));
     }
-    static FloatLanes to_floats(UintLanes reversed_fraction) {
-      return unit_floats(detail::reverse_bits(reversed_fraction));
+    static Float<W> to_unit_float(UInt<W> reversed_fraction) {
+      return bits_to_unit_float(detail::reverse_bits(reversed_fraction));
     }
 
-    Uint64Lanes pixel_key_{};
-    UintLanes reversed_index_{};
-    UintLanes dimension_{};
+    UInt64<W> pixel_key_{};
+    UInt<W> reversed_index_{};
+    UInt<W> dimension_{};
   };
-#endif
+  using Lanes = Wide<8>;
+
+  void start(const PixelSample& s) { state_.start(true, s); }
+  float next_1d() { return state_.next_1d(true); }
+  Vec2 next_2d() { return state_.next_2d(true); }
 
  private:
-  std::uint32_t shuffled_index(std::uint32_t dimension) const {
-    // owen_scramble(index), with the index's reversal done once in start().
-    return detail::reverse_bits(
-        owen_scramble_reversed(reversed_index_, detail::dimension_key(pixel_key_, dimension, 0)));
-  }
-  static float to_float(std::uint32_t reversed_fraction) {
-    return bits_to_unit_float(detail::reverse_bits(reversed_fraction));
-  }
-
-  std::uint64_t pixel_key_ = 0;
-  std::uint32_t reversed_index_ = 0;
-  std::uint32_t dimension_ = 0;
+  Wide<1> state_;
 };
 static_assert(Sampler<SobolSampler>);
 
