@@ -1,8 +1,8 @@
 #pragma once
 // The eight-lane width of math/wide.hpp as the wavefront renderer's stages use it, lane i being
 // path i of a block, with what AVX2 adds to the width-generic operations: lane masks as bits,
-// transposes, permutations and the packing of lanes into queues, 64-bit lanes for the samplers'
-// hashes. Defined only with GLINT_AVX2 (geometry/simd.hpp).
+// transposes, permutations and the packing of lanes into queues. Defined only with GLINT_AVX2
+// (geometry/simd.hpp).
 
 #include <bit>
 #include <cmath>
@@ -125,81 +125,6 @@ inline IntLanes rotated_order(IntLanes packing, int at) {
 /// bits_to_unit_float lane by lane: the top 24 bits as a float in [0, 1), exactly.
 inline FloatLanes unit_floats(UintLanes bits) {
   return __builtin_convertvector(std::bit_cast<IntLanes>(bits >> 8), FloatLanes) * 0x1p-24f;
-}
-
-/// Eight 64-bit integers: lanes 0-3 and 4-7 in two AVX registers (the multiplications are
-/// AVX-512's where the compiler targets it, three 32-bit ones each otherwise).
-struct Uint64Lanes {
-  using Half = std::uint64_t __attribute__((vector_size(32)));
-  Half low, high;
-
-  static Uint64Lanes broadcast(std::uint64_t value) { return {Half{} + value, Half{} + value}; }
-  /// Zero-extended.
-  static Uint64Lanes from(UintLanes v) {
-    using Four = std::uint32_t __attribute__((vector_size(16)));
-    const Four low4 = __builtin_shufflevector(v, v, 0, 1, 2, 3);
-    const Four high4 = __builtin_shufflevector(v, v, 4, 5, 6, 7);
-    return {__builtin_convertvector(low4, Half), __builtin_convertvector(high4, Half)};
-  }
-  /// The low 32 bits of each lane.
-  UintLanes low_bits() const {
-#if defined(__AVX512VL__)
-    using Four = std::uint32_t __attribute__((vector_size(16)));
-    const Four a = __builtin_convertvector(low, Four);
-    const Four b = __builtin_convertvector(high, Four);
-    return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
-#else
-    // Without AVX-512's narrowing moves, GCC builds this from fifteen instructions; two do it:
-    // the even 32-bit words of both halves, then their 64-bit pairs in lane order.
-    const __m256 words = _mm256_shuffle_ps(_mm256_castsi256_ps(__m256i(low)),
-                                           _mm256_castsi256_ps(__m256i(high)), 0b10'00'10'00);
-    return std::bit_cast<UintLanes>(
-        _mm256_permute4x64_epi64(_mm256_castps_si256(words), 0b11'01'10'00));
-#endif
-  }
-  UintLanes high_bits() const {
-    return (*this >> 32).low_bits();
-  }
-  std::uint64_t lane(int i) const {
-    return i < 4 ? low[i] : high[i - 4];
-  }
-  void set_lane(int i, std::uint64_t value) {
-    if (i < 4)
-      low[i] = value;
-    else
-      high[i - 4] = value;
-  }
-
-  friend Uint64Lanes operator+(const Uint64Lanes& a, const Uint64Lanes& b) {
-    return {a.low + b.low, a.high + b.high};
-  }
-  friend Uint64Lanes operator*(const Uint64Lanes& a, const Uint64Lanes& b) {
-    return {a.low * b.low, a.high * b.high};
-  }
-  friend Uint64Lanes operator^(const Uint64Lanes& a, const Uint64Lanes& b) {
-    return {a.low ^ b.low, a.high ^ b.high};
-  }
-  friend Uint64Lanes operator|(const Uint64Lanes& a, const Uint64Lanes& b) {
-    return {a.low | b.low, a.high | b.high};
-  }
-  friend Uint64Lanes operator>>(const Uint64Lanes& a, int shift) {
-    return {a.low >> shift, a.high >> shift};
-  }
-  friend Uint64Lanes operator<<(const Uint64Lanes& a, int shift) {
-    return {a.low << shift, a.high << shift};
-  }
-};
-
-/// `if_true` in the lanes where `mask` is true.
-inline Uint64Lanes select(IntLanes mask, const Uint64Lanes& if_true, const Uint64Lanes& if_false) {
-  using Four = std::int32_t __attribute__((vector_size(16)));
-  using Wide = std::int64_t __attribute__((vector_size(32)));
-  const Four low4 = __builtin_shufflevector(mask, mask, 0, 1, 2, 3);
-  const Four high4 = __builtin_shufflevector(mask, mask, 4, 5, 6, 7);
-  const auto low = std::bit_cast<Uint64Lanes::Half>(__builtin_convertvector(low4, Wide));
-  const auto high = std::bit_cast<Uint64Lanes::Half>(__builtin_convertvector(high4, Wide));
-  return {(if_true.low & low) | (if_false.low & ~low),
-          (if_true.high & high) | (if_false.high & ~high)};
 }
 
 using Vec2Lanes = Vector2<FloatLanes>;

@@ -25,7 +25,6 @@ struct PixelSamples {
   std::uint64_t seed = 0;
 };
 using PixelSample = PixelSamples<1>;
-using PixelSampleLanes = PixelSamples<8>;
 
 /// Where sample values come from: a stream of values in [0,1), dimension by dimension.
 template <typename S>

@@ -81,7 +81,6 @@ class HybridSobolSampler {
     Pcg32::Wide<W> rng_;
     UInt<W> requests_{};
   };
-  using Lanes = Wide<8>;
 
   void start(const PixelSample& s) { state_.start(true, s); }
   float next_1d() { return state_.next_1d(true); }

@@ -35,7 +35,6 @@ class IndependentSampler {
 
     Pcg32::Wide<W> rng_;
   };
-  using Lanes = Wide<8>;
 
   void start(const PixelSample& s) { state_.start(true, s); }
   float next_1d() { return state_.next_1d(true); }

@@ -90,7 +90,6 @@ class SobolSampler {
     UInt<W> reversed_index_{};
     UInt<W> dimension_{};
   };
-  using Lanes = Wide<8>;
 
   void start(const PixelSample& s) { state_.start(true, s); }
   float next_1d() { return state_.next_1d(true); }

@@ -80,35 +80,30 @@ concept PoliciesAtWidth = requires(Vec2For<Float<W>> u, Float<W> value, Int<W> d
   { C::path_termination::continue_probability(depth, value) } -> std::same_as<Float<W>>;
 };
 
-#if defined(GLINT_AVX2)
-/// A sampler with a form that draws for eight paths at once, in SIMD lanes: S::Lanes, which
-/// loads and stores lane i from and to a sampler and draws for the lanes of a mask (the others
-/// keep their state). Without one, WavefrontExecution draws path by path.
-template <typename S>
-concept LanewiseSampler = requires(typename S::Lanes lanes, const S& from, S& to, IntLanes mask) {
-  lanes.set_lane(0, from);
-  lanes.get_lane(0, to);
-  { lanes.next_1d(mask) } -> std::same_as<FloatLanes>;
-  { lanes.next_2d(mask) } -> std::same_as<Vec2Lanes>;
-};
-
-/// A LanewiseSampler whose Lanes form also starts the samplers of a mask's lanes at once, to
-/// the state that S::start gives each. Without it the camera stage starts them one by one and
-/// stores each in its lane.
-template <typename S>
-concept LanewiseSamplerStart = LanewiseSampler<S> &&
-    requires(typename S::Lanes lanes, IntLanes mask, PixelSampleLanes s) {
-  lanes.start(mask, s);
-};
-#endif
-
 namespace detail {
 
-/// The samplers of a thread's paths in flight, path p in slot p: one sampler per path, or
-/// (kInLanes) the sampler's Lanes form, a block of eight paths per element, which the stages
-/// draw from in place instead of loading and storing eight samplers around every stage.
-template <typename S, bool kInLanes>
+/// The samplers of a thread's paths in flight, path p in slot p: one sampler per path (W = 1),
+/// or the sampler's Wide<W> form, a block of W paths per element, which the stages draw from in
+/// place instead of loading and storing W samplers around every stage.
+template <typename S, int W>
 class PathSamplers {
+ public:
+  explicit PathSamplers(int paths) : blocks_(std::size_t(paths / W)) {}
+  /// The samplers of paths base .. base + W - 1 (base a multiple of W).
+  typename S::template Wide<W>& block(int base) { return blocks_[std::size_t(base / W)]; }
+  void set(int p, const S& sampler) { block(p).set_lane(p % W, sampler); }
+  void move(int from, int to) {
+    S sampler;
+    block(from).get_lane(from % W, sampler);
+    set(to, sampler);
+  }
+
+ private:
+  AlignedArray<typename S::template Wide<W>> blocks_;
+};
+
+template <typename S>
+class PathSamplers<S, 1> {
  public:
   explicit PathSamplers(int paths) : samplers_(std::size_t(paths)) {}
   S& operator[](int p) { return samplers_[std::size_t(p)]; }
@@ -118,25 +113,6 @@ class PathSamplers {
  private:
   std::vector<S> samplers_;
 };
-
-#if defined(GLINT_AVX2)
-template <typename S>
-class PathSamplers<S, true> {
- public:
-  explicit PathSamplers(int paths) : blocks_(std::size_t(paths / kLaneCount)) {}
-  /// The samplers of paths base .. base+7 (base a multiple of eight).
-  typename S::Lanes& block(int base) { return blocks_[std::size_t(base / kLaneCount)]; }
-  void set(int p, const S& sampler) { block(p).set_lane(p % kLaneCount, sampler); }
-  void move(int from, int to) {
-    S sampler;
-    block(from).get_lane(from % kLaneCount, sampler);
-    set(to, sampler);
-  }
-
- private:
-  AlignedArray<typename S::Lanes> blocks_;
-};
-#endif
 
 /// Where sample number `n` of a tile's work belongs: pixel by pixel, row by row, and within
 /// a pixel samples first, first + 1, ...
@@ -150,35 +126,18 @@ struct PieceLayout {
   std::uint32_t index(std::uint64_t n) const {
     return std::uint32_t(std::uint64_t(first) + n % per_pixel);
   }
-#if defined(GLINT_AVX2)
-  /// x, y and index of samples n[0] .. n[7] in SIMD lanes. The quotients are taken in
-  /// floating point and truncated: for integers with a + b below 2^p (p = 53 in a double, 24
-  /// in a float), a / b lies at least 1/b below the next integer, farther than its rounding
-  /// can carry it. Here n + per_pixel is below 2^41 (a tile has at most 2^20 pixels, a pass
-  /// at most 2^20 samples), and the pixel n / per_pixel plus the tile's width below 2^21.
-  void lanes(const std::uint64_t* n, PixelSampleLanes& sample) const {
-    using Doubles = double __attribute__((vector_size(32)));
-    Uint64Lanes samples;
-    std::memcpy(&samples.low, n, sizeof samples.low);
-    std::memcpy(&samples.high, n + 4, sizeof samples.high);
-    const auto quotient = [&](Uint64Lanes::Half half) {
-      // Without AVX-512's conversion: below 2^52, n is the mantissa of the double 2^52 + n.
-      const Doubles value = std::bit_cast<Doubles>(half | 0x4330000000000000ULL) - 0x1p52;
-      // Truncated by the instruction rather than a cast, which would be undefined where a lane
-      // outside the caller's mask holds another tile's sample and the quotient overflows.
-      return _mm256_cvttpd_epi32(__m256d(value / double(per_pixel)));
-    };
-    const auto pixel =
-        std::bit_cast<IntLanes>(_mm256_set_m128i(quotient(samples.high), quotient(samples.low)));
-    const int width = tile.width();
-    const IntLanes row = __builtin_convertvector(
-        __builtin_convertvector(pixel, FloatLanes) / float(width), IntLanes);
-    sample.x = std::bit_cast<UintLanes>(tile.x0 + pixel - row * width);
-    sample.y = std::bit_cast<UintLanes>(tile.y0 + row);
-    sample.index = std::uint32_t(first) + samples.low_bits() -
-                   std::bit_cast<UintLanes>(pixel) * std::uint32_t(per_pixel);
+  /// The PixelSamples of samples n[0] .. n[W-1], lane by lane.
+  template <int W>
+  PixelSamples<W> samples(const std::uint64_t* n, std::uint32_t samples_per_pixel,
+                          std::uint64_t seed) const {
+    std::uint32_t xs[W], ys[W], indices[W];
+    for (int i = 0; i < W; ++i) {
+      xs[i] = std::uint32_t(x(n[i]));
+      ys[i] = std::uint32_t(y(n[i]));
+      indices[i] = index(n[i]);
+    }
+    return {load<UInt<W>>(xs), load<UInt<W>>(ys), load<UInt<W>>(indices), samples_per_pixel, seed};
   }
-#endif
 };
 
 }  // namespace detail
@@ -198,15 +157,13 @@ class WavefrontExecution {
 #if defined(GLINT_AVX2)
   /// Paths shaded at once: a SIMD register's lanes where every policy has a form for them.
   static constexpr int kWidth = PoliciesAtWidth<C, kLaneCount> ? kLaneCount : 1;
-  /// Whether the samplers are kept in their Lanes form (detail::PathSamplers).
-  static constexpr bool kSamplersInLanes = kWidth > 1 && LanewiseSampler<SamplerType>;
-  /// Whether the camera stage starts eight samplers at once (LanewiseSamplerStart).
-  static constexpr bool kStartsInLanes = kSamplersInLanes && LanewiseSamplerStart<SamplerType>;
 #else
   static constexpr int kWidth = 1;
-  static constexpr bool kSamplersInLanes = false;
-  static constexpr bool kStartsInLanes = false;
 #endif
+  /// Whether the samplers are kept in their Wide form (detail::PathSamplers).
+  static constexpr bool kSamplersInLanes = kWidth > 1 && WideSampler<SamplerType, kWidth>;
+  /// Whether the camera stage starts kWidth samplers at once (WideSamplerStart).
+  static constexpr bool kStartsInLanes = kSamplersInLanes && WideSamplerStart<SamplerType, kWidth>;
   using Lanes = Float<kWidth>;
   using LaneMaskType = Mask<kWidth>;
 
@@ -298,7 +255,7 @@ class WavefrontExecution {
     detail::AlignedArray<std::int32_t> depth;
     std::vector<std::uint64_t> sample;     ///< the path's sample, numbered within the tile's work
     detail::AlignedArray<float> from_pdf;  ///< PathLanes::from_pdf
-    detail::PathSamplers<SamplerType, kSamplersInLanes> sampler;
+    detail::PathSamplers<SamplerType, kSamplersInLanes ? kWidth : 1> sampler;
 
     // What the current bounce waits for (PendingLight): light that the queued rays may bring,
     // added by ChainEstimator::add_light once they are traced.
@@ -389,18 +346,15 @@ class WavefrontExecution {
   GLINT_FLATTEN void start_block(ThreadState& state, int base, LaneMaskType lanes,
                                  const PieceLayout& piece) const {
     Vec2For<Lanes> film{};
-#if defined(GLINT_AVX2)
     if constexpr (kStartsInLanes) {
-      PixelSampleLanes sample{.samples_per_pixel = std::uint32_t(settings_.samples_per_pixel),
-                              .seed = settings_.seed};
-      piece.lanes(&state.sample[std::size_t(base)], sample);
+      const PixelSamples<kWidth> sample =
+          piece.samples<kWidth>(&state.sample[std::size_t(base)],
+                                std::uint32_t(settings_.samples_per_pixel), settings_.seed);
       state.sampler.block(base).start(lanes, sample);
       // The pixel's centre, float(x) + 0.5f, as for one path.
-      film = {to_float(std::bit_cast<IntLanes>(sample.x)) + 0.5f,
-              to_float(std::bit_cast<IntLanes>(sample.y)) + 0.5f};
-    } else
-#endif
-    {
+      film = {to_float(std::bit_cast<IntFor<Lanes>>(sample.x)) + 0.5f,
+              to_float(std::bit_cast<IntFor<Lanes>>(sample.y)) + 0.5f};
+    } else {
       for (int i = 0; i < kWidth; ++i)
         if (lane(lanes, i)) {
           const std::uint64_t n = state.sample[std::size_t(base + i)];
@@ -598,7 +552,7 @@ class WavefrontExecution {
   /// the other lanes are unspecified.
   class SamplerBlock {
    public:
-    SamplerBlock(detail::PathSamplers<SamplerType, false>& samplers, int base)
+    SamplerBlock(detail::PathSamplers<SamplerType, 1>& samplers, int base)
         : samplers_(samplers), base_(base) {}
 
     FloatLanes next_1d(IntLanes mask) {
@@ -617,7 +571,7 @@ class WavefrontExecution {
     }
 
    private:
-    detail::PathSamplers<SamplerType, false>& samplers_;
+    detail::PathSamplers<SamplerType, 1>& samplers_;
     int base_;
   };
 
