@@ -36,6 +36,12 @@ auto renderers_of(std::tuple<V...>*)
 using AllRenderers = decltype(renderers_of(static_cast<glint::compiled::Variants*>(nullptr)));
 static_assert(std::tuple_size_v<AllRenderers> > std::tuple_size_v<glint::compiled::Variants>);
 
+template <typename... V>
+auto chain_variants(std::tuple<V...>*) -> decltype(std::tuple_cat(
+    std::conditional_t<glint::WavefrontConfig<V>, std::tuple<V>, std::tuple<>>{}...));
+/// Every compiled chain variant (one lobe per bounce): the ones WavefrontRenderer renders.
+using ChainVariants = decltype(chain_variants(static_cast<glint::compiled::Variants*>(nullptr)));
+
 /// Calls `visit.template operator()<V>()` for each compiled variant V, in order.
 template <typename Visit>
 void for_each_compiled_variant(Visit&& visit) {

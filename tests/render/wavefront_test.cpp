@@ -26,11 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Every compiled chain variant, the ones WavefrontRenderer renders.
-template <typename... V>
-auto chain_variants(std::tuple<V...>*) -> decltype(std::tuple_cat(
-    std::conditional_t<glint::WavefrontConfig<V>, std::tuple<V>, std::tuple<>>{}...));
-using ChainVariants = decltype(chain_variants(static_cast<glint::compiled::Variants*>(nullptr)));
+using glint_test::ChainVariants;
 static_assert(std::tuple_size_v<ChainVariants> >= 1);
 static_assert(std::tuple_size_v<ChainVariants> >= 3 ||
               !std::is_same_v<glint::compiled::Variants, glint::variants::all>);

@@ -366,6 +366,52 @@ inline Vec3 select(bool mask, const Vec3& if_true, const Vec3& if_false) {
   return mask ? if_true : if_false;
 }
 
+// ---- halves and lane bits ------------------------------------------------------------------
+
+/// The lower and upper halves of a 16-lane value as 8-lane values, and back.
+template <WideNumber T>
+requires(kLanesOf<T> == 16) inline auto low_half(T v) {
+  return __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7);
+}
+template <WideNumber T>
+requires(kLanesOf<T> == 16) inline auto high_half(T v) {
+  return __builtin_shufflevector(v, v, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+template <WideNumber T>
+requires(kLanesOf<T> == 8) inline auto join(T low, T high) {
+  return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+
+/// The lanes of a mask as bits (bit i: lane i), and the mask of type M whose lane i is bit i
+/// of `bits`.
+inline std::uint32_t bits_of_mask(bool mask) {
+  return mask ? 1u : 0u;
+}
+template <WideNumber M>
+inline std::uint32_t bits_of_mask(M mask) {
+#if defined(__AVX__)
+  if constexpr (kLanesOf<M> == 8)
+    return std::uint32_t(_mm256_movemask_ps(std::bit_cast<__m256>(mask)));
+  if constexpr (kLanesOf<M> == 16)
+    return bits_of_mask(low_half(mask)) | bits_of_mask(high_half(mask)) << 8;
+#endif
+  std::uint32_t bits = 0;
+  for (int i = 0; i < kLanesOf<M>; ++i)
+    bits |= (mask[i] != 0 ? 1u : 0u) << i;
+  return bits;
+}
+template <typename M>
+inline M mask_of_bits(std::uint32_t bits) {
+  if constexpr (kLanesOf<M> == 1) {
+    return (bits & 1u) != 0;
+  } else {
+    M lane_bit{};
+    for (int i = 0; i < kLanesOf<M>; ++i)
+      lane_bit[i] = std::int32_t(1u << i);
+    return (splat<M>(std::int32_t(bits)) & lane_bit) != 0;
+  }
+}
+
 }  // namespace glint
 
 // ---- 64-bit lanes ----------------------------------------------------------------------------

@@ -114,6 +114,29 @@ SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F
     s.shading = flags & 0xff;
     s.fully_transparent = (flags & 0xff00) != 0;
     s.emitter = select(lanes, std::bit_cast<UintLanes>(last[7]), UintLanes{} + kNotAnEmitter);
+  } else if constexpr (W == 2 * kLaneCount) {
+    // Two transposes of eight.
+    const SurfaceLanes<FloatLanes> low =
+        gather_surfaces<FloatLanes>(scene, low_half(sphere), low_half(lanes));
+    const SurfaceLanes<FloatLanes> high =
+        gather_surfaces<FloatLanes>(scene, high_half(sphere), high_half(lanes));
+    const auto both = [](const auto& a, const auto& b) { return join(a, b); };
+    const auto both3 = [](const Vec3Lanes& a, const Vec3Lanes& b) {
+      return Vector3<F>{join(a.x, b.x), join(a.y, b.y), join(a.z, b.z)};
+    };
+    s = {both(low.diffuse, high.diffuse),
+         both3(low.diffuse_color, high.diffuse_color),
+         both(low.mirror, high.mirror),
+         both3(low.mirror_color, high.mirror_color),
+         both(low.transparent, high.transparent),
+         both3(low.transparent_color, high.transparent_color),
+         both(low.ior, high.ior),
+         both3(low.emission, high.emission),
+         both3(low.center, high.center),
+         both(low.ior_outside, high.ior_outside),
+         both(low.fully_transparent, high.fully_transparent),
+         both(low.shading, high.shading),
+         both(low.emitter, high.emitter)};
 #endif
   } else {
     for (int i = 0; i < W; ++i)

@@ -142,8 +142,29 @@ struct PieceLayout {
 
 }  // namespace detail
 
-template <RenderConfig C>
+/// The shading width WavefrontExecution<C> uses: 8 paths where the build has AVX2 and C's
+/// policies have a form for eight lanes, else 1. (16, AVX-512's width, gives the same image
+/// and is chosen explicitly: on the bench scenes it is not faster, since the sphere and emitter
+/// records are gathered in two halves and the batched queries trace eight rays at a time;
+/// bench/features_bench.cpp measures it.)
+template <typename C>
+consteval int default_shading_width() {
+#if defined(GLINT_AVX2)
+  if constexpr (PoliciesAtWidth<C, 8>) return 8;
+#endif
+  return 1;
+}
+
+/// W: the paths shaded at once (1, 8 or 16), default_shading_width by default. Every width
+/// gives the same image.
+template <RenderConfig C, int W = default_shading_width<C>()>
 class WavefrontExecution {
+  static_assert(W == 1 || PoliciesAtWidth<C, W>,
+                "a policy of this configuration has no form for W lanes");
+  static_assert(W == 1 || W == 8 || W == 16);
+#if !defined(GLINT_AVX2)
+  static_assert(W == 1, "shading several paths at once needs a build with AVX2");
+#endif
   static_assert(WavefrontConfig<C>,
                 "WavefrontRenderer renders chain configurations only (material_model = "
                 "StochasticMaterialModel, one lobe per bounce); the report's tree model follows "
@@ -154,12 +175,8 @@ class WavefrontExecution {
   using SamplerType = typename C::sampler;
   using Context = PathContext<C>;
   static constexpr bool kSamplesEmitters = Context::kSamplesEmitters;
-#if defined(GLINT_AVX2)
-  /// Paths shaded at once: a SIMD register's lanes where every policy has a form for them.
-  static constexpr int kWidth = PoliciesAtWidth<C, kLaneCount> ? kLaneCount : 1;
-#else
-  static constexpr int kWidth = 1;
-#endif
+  /// Paths shaded at once.
+  static constexpr int kWidth = W;
   /// Whether the samplers are kept in their Wide form (detail::PathSamplers).
   static constexpr bool kSamplersInLanes = kWidth > 1 && WideSampler<SamplerType, kWidth>;
   /// Whether the camera stage starts kWidth samplers at once (WideSamplerStart).
@@ -396,20 +413,63 @@ class WavefrontExecution {
     return lanes;
   }
 
+  /// kWidth consecutive values of a column of the 8-lane blocks `blocks` from path `base` on
+  /// (two blocks' columns for 16 paths), and back.
+  template <typename T, typename Block, typename S>
+  static T load_column(const Block* blocks, S (Block::*column)[RayBatch::kWidth], int base) {
+    const Block& block = blocks[base / RayBatch::kWidth];
+    if constexpr (kWidth <= RayBatch::kWidth) {
+      return load<T>(&(block.*column)[base % RayBatch::kWidth]);
+    } else {
+      using Half = decltype(low_half(T{}));
+      return join(load<Half>(block.*column), load<Half>((&block + 1)->*column));
+    }
+  }
+  template <typename Block, typename S, typename T>
+  static void store_column(Block* blocks, S (Block::*column)[RayBatch::kWidth], int base,
+                           LaneMaskType lanes, T value) {
+    value = select(lanes, value, load_column<T>(blocks, column, base));
+    Block& block = blocks[base / RayBatch::kWidth];
+    if constexpr (kWidth <= RayBatch::kWidth) {
+      store(&(block.*column)[base % RayBatch::kWidth], value);
+    } else {
+      store(block.*column, low_half(value));
+      store((&block + 1)->*column, high_half(value));
+    }
+  }
+  /// The heads_into_origin_sphere bits of paths base .. base + kWidth - 1, and back.
+  static LaneMask heads_into_bits(const RayBatch* blocks, int base) {
+    const RayBatch& block = blocks[base / RayBatch::kWidth];
+    if constexpr (kWidth <= RayBatch::kWidth)
+      return block.heads_into_origin_sphere >> (base % RayBatch::kWidth);
+    else
+      return block.heads_into_origin_sphere | (&block + 1)->heads_into_origin_sphere << 8;
+  }
+  static void set_heads_into_bits(RayBatch* blocks, int base, LaneMask lanes, LaneMask bits) {
+    for (int half = 0; half < std::max(1, kWidth / RayBatch::kWidth); ++half) {
+      RayBatch& block = blocks[base / RayBatch::kWidth + half];
+      const int shift = kWidth <= RayBatch::kWidth ? base % RayBatch::kWidth : 0;
+      const LaneMask in = ((lanes >> (8 * half)) & RayBatch::kAllLanes) << shift;
+      const LaneMask to = ((bits >> (8 * half)) & RayBatch::kAllLanes) << shift;
+      block.heads_into_origin_sphere = (block.heads_into_origin_sphere & ~in) | (to & in);
+    }
+  }
+
   /// The state of paths base .. base + kWidth - 1 between bounces.
   static PathLanes<Lanes> load_paths(const ThreadState& state, int base) {
     using U = UIntFor<Lanes>;
-    const RayBatch& rays = state.rays[std::size_t(base / RayBatch::kWidth)];
-    const int at = base % RayBatch::kWidth;
+    const RayBatch* rays = state.rays.data();
     PathLanes<Lanes> path;
-    path.ray.origin = {load<Lanes>(&rays.origin_x[at]), load<Lanes>(&rays.origin_y[at]),
-                       load<Lanes>(&rays.origin_z[at])};
-    path.ray.direction = {load<Lanes>(&rays.direction_x[at]), load<Lanes>(&rays.direction_y[at]),
-                          load<Lanes>(&rays.direction_z[at])};
-    path.ray.t_min = load<Lanes>(&rays.t_min[at]);
-    path.ray.t_max = load<Lanes>(&rays.t_max[at]);
-    path.ray.origin_sphere = load<U>(&rays.origin_sphere[at]);
-    path.ray.heads_into_origin_sphere = mask_of_bits(rays.heads_into_origin_sphere >> at);
+    path.ray.origin = {load_column<Lanes>(rays, &RayBatch::origin_x, base),
+                       load_column<Lanes>(rays, &RayBatch::origin_y, base),
+                       load_column<Lanes>(rays, &RayBatch::origin_z, base)};
+    path.ray.direction = {load_column<Lanes>(rays, &RayBatch::direction_x, base),
+                          load_column<Lanes>(rays, &RayBatch::direction_y, base),
+                          load_column<Lanes>(rays, &RayBatch::direction_z, base)};
+    path.ray.t_min = load_column<Lanes>(rays, &RayBatch::t_min, base);
+    path.ray.t_max = load_column<Lanes>(rays, &RayBatch::t_max, base);
+    path.ray.origin_sphere = load_column<U>(rays, &RayBatch::origin_sphere, base);
+    path.ray.heads_into_origin_sphere = mask_of_bits<LaneMaskType>(heads_into_bits(rays, base));
     path.throughput = state.throughput.load(base);
     path.radiance = state.radiance.load(base);
     path.depth = load<IntFor<Lanes>>(&state.depth[std::size_t(base)]);
@@ -420,48 +480,25 @@ class WavefrontExecution {
   /// Stores the lanes of `lanes` of `path` as paths base .. base + kWidth - 1.
   static void store_paths(ThreadState& state, int base, LaneMaskType lanes,
                           const PathLanes<Lanes>& path) {
-    RayBatch& rays = state.rays[std::size_t(base / RayBatch::kWidth)];
-    const int at = base % RayBatch::kWidth;
+    RayBatch* rays = state.rays.data();
+    store_column(rays, &RayBatch::origin_x, base, lanes, path.ray.origin.x);
+    store_column(rays, &RayBatch::origin_y, base, lanes, path.ray.origin.y);
+    store_column(rays, &RayBatch::origin_z, base, lanes, path.ray.origin.z);
+    store_column(rays, &RayBatch::direction_x, base, lanes, path.ray.direction.x);
+    store_column(rays, &RayBatch::direction_y, base, lanes, path.ray.direction.y);
+    store_column(rays, &RayBatch::direction_z, base, lanes, path.ray.direction.z);
+    store_column(rays, &RayBatch::t_min, base, lanes, path.ray.t_min);
+    store_column(rays, &RayBatch::t_max, base, lanes, path.ray.t_max);
+    store_column(rays, &RayBatch::origin_sphere, base, lanes, path.ray.origin_sphere);
+    set_heads_into_bits(rays, base, bits_of_mask(lanes),
+                        bits_of_mask(path.ray.heads_into_origin_sphere));
+    state.throughput.store(base, select(lanes, path.throughput, state.throughput.load(base)));
+    state.radiance.store(base, select(lanes, path.radiance, state.radiance.load(base)));
     const auto update = [&](auto* column, auto value) {
       store(column, select(lanes, value, load<decltype(value)>(column)));
     };
-    update(&rays.origin_x[at], path.ray.origin.x);
-    update(&rays.origin_y[at], path.ray.origin.y);
-    update(&rays.origin_z[at], path.ray.origin.z);
-    update(&rays.direction_x[at], path.ray.direction.x);
-    update(&rays.direction_y[at], path.ray.direction.y);
-    update(&rays.direction_z[at], path.ray.direction.z);
-    update(&rays.t_min[at], path.ray.t_min);
-    update(&rays.t_max[at], path.ray.t_max);
-    update(&rays.origin_sphere[at], path.ray.origin_sphere);
-    const LaneMask bits = bits_of_mask(lanes) << at;
-    rays.heads_into_origin_sphere =
-        (rays.heads_into_origin_sphere & ~bits) |
-        ((bits_of_mask(path.ray.heads_into_origin_sphere) << at) & bits);
-    state.throughput.store(base, select(lanes, path.throughput, state.throughput.load(base)));
-    state.radiance.store(base, select(lanes, path.radiance, state.radiance.load(base)));
     update(&state.depth[std::size_t(base)], path.depth);
     update(&state.from_pdf[std::size_t(base)], path.from_pdf);
-  }
-
-  /// A mask's lanes as bits (bit i: lane i), and back from the low kWidth bits.
-  static LaneMask bits_of_mask(LaneMaskType mask) {
-    if constexpr (kWidth == 1) {
-      return mask ? 1u : 0u;
-    } else {
-#if defined(GLINT_AVX2)
-      return lane_bits(mask);
-#endif
-    }
-  }
-  static LaneMaskType mask_of_bits(LaneMask bits) {
-    if constexpr (kWidth == 1) {
-      return (bits & 1u) != 0;
-    } else {
-#if defined(GLINT_AVX2)
-      return lanes_of_bits(bits & RayBatch::kAllLanes);
-#endif
-    }
   }
 
   GLINT_STAGE void trace_closest_hits(ThreadState& state, int live, TraceCounters& counters) const {
@@ -481,15 +518,15 @@ class WavefrontExecution {
   /// rays found, its light rays queued: their light is added by gather_and_retire.
   GLINT_FLATTEN void shade_block(ThreadState& state, int base, LaneMaskType lanes,
                                  TraceCounters& counters) const {
-    const HitBatch& hits = state.hits[std::size_t(base / RayBatch::kWidth)];
-    const int at = base % RayBatch::kWidth;
+    const HitBatch* hits = state.hits.data();
     PathLanes<Lanes> path = load_paths(state, base);
     PendingLight<Lanes> pending{};
     LightQueue queue{*this, state, base};
     auto&& draws = draws_of(state, base);
     const LaneMaskType going_on =
-        estimator_.step(lanes, path, load<Lanes>(&hits.t[at]),
-                        load<UIntFor<Lanes>>(&hits.sphere[at]), draws, queue, pending, counters);
+        estimator_.step(lanes, path, load_column<Lanes>(hits, &HitBatch::t, base),
+                        load_column<UIntFor<Lanes>>(hits, &HitBatch::sphere, base), draws, queue,
+                        pending, counters);
     store_paths(state, base, lanes, path);
     using I = IntFor<Lanes>;
     const auto u = std::size_t(base);
@@ -512,7 +549,10 @@ class WavefrontExecution {
       if constexpr (kWidth == 1) {
         if (lit) execution_.queue_shadow_ray(state_, base_, rays, irradiance);
       } else {
-        execution_.queue_shadow_rays(state_, base_, bits_of_mask(lit), rays, irradiance);
+        for_each_block(bits_of_mask(lit), rays, [&](int at, LaneMask bits, const auto& block) {
+          execution_.queue_shadow_rays(state_, base_ + at, bits, block,
+                                       eight_lanes(irradiance, at));
+        });
       }
     }
     void emitter_rays(LaneMaskType sampled, const RayFor<Lanes>& rays,
@@ -521,7 +561,37 @@ class WavefrontExecution {
       if constexpr (kWidth == 1) {
         if (sampled) queue_emitter_ray(state_, base_, rays, emitter_sphere);
       } else {
-        queue_emitter_rays(state_, base_, bits_of_mask(sampled), rays, emitter_sphere);
+        for_each_block(bits_of_mask(sampled), rays, [&](int at, LaneMask bits, const auto& block) {
+          queue_emitter_rays(state_, base_ + at, bits, block, eight_lanes(emitter_sphere, at));
+        });
+      }
+    }
+
+   private:
+    /// visit(first lane, lane bits, rays) for each 8-lane block of `rays` with lanes in `bits`,
+    /// in lane order (the queues append eight lanes at a time).
+    template <typename Visit>
+    static void for_each_block(LaneMask bits, const RayFor<Lanes>& rays, Visit&& visit) {
+      for (int at = 0; at < kWidth; at += RayBatch::kWidth) {
+        const LaneMask block_bits = (bits >> at) & RayBatch::kAllLanes;
+        if (block_bits == 0) continue;
+        visit(at, block_bits,
+              RayLanes<Float<8>>{eight_lanes(rays.origin, at), eight_lanes(rays.direction, at),
+                                 eight_lanes(rays.t_min, at), eight_lanes(rays.t_max, at),
+                                 eight_lanes(rays.origin_sphere, at),
+                                 eight_lanes(rays.heads_into_origin_sphere, at)});
+      }
+    }
+    /// Lanes at .. at + 7 of a value of kWidth (8 or 16) lanes.
+    template <typename T>
+    static auto eight_lanes(const T& value, int at) {
+      if constexpr (std::is_same_v<T, Vec3For<Lanes>>) {
+        return Vector3<Float<8>>{eight_lanes(value.x, at), eight_lanes(value.y, at),
+                                 eight_lanes(value.z, at)};
+      } else if constexpr (kLanesOf<T> == 8) {
+        return value;
+      } else {
+        return at == 0 ? low_half(value) : high_half(value);
       }
     }
 
@@ -535,38 +605,36 @@ class WavefrontExecution {
   /// and next_2d(draws, mask): path base's own sampler at width 1; wider, their Lanes form in
   /// place (kSamplersInLanes), else a SamplerBlock that draws lane by lane.
   static decltype(auto) draws_of(ThreadState& state, int base) {
-    if constexpr (kWidth == 1) {
+    if constexpr (kWidth == 1)
       return state.sampler[base];
-#if defined(GLINT_AVX2)
-    } else if constexpr (kSamplersInLanes) {
+    else if constexpr (kSamplersInLanes)
       return state.sampler.block(base);
-    } else {
+    else
       return SamplerBlock(state.sampler, base);
-#endif
-    }
   }
 
-#if defined(GLINT_AVX2)
-  /// The samplers of paths base .. base+7 drawn from one by one, for a sampler without a Lanes
-  /// form. Each draw is for the lanes of a mask, whose samplers alone advance; the values of
-  /// the other lanes are unspecified.
+  /// The samplers of paths base .. base + kWidth - 1 drawn from one by one, for a sampler
+  /// without a Wide form. Each draw is for the lanes of a mask, whose samplers alone advance;
+  /// the values of the other lanes are unspecified.
   class SamplerBlock {
    public:
     SamplerBlock(detail::PathSamplers<SamplerType, 1>& samplers, int base)
         : samplers_(samplers), base_(base) {}
 
-    FloatLanes next_1d(IntLanes mask) {
-      FloatLanes value = broadcast(0.0f);
-      for_each_lane(lane_bits(mask), [&](int i) { value[i] = samplers_[base_ + i].next_1d(); });
+    Lanes next_1d(LaneMaskType mask) {
+      Lanes value = splat<Lanes>(0.0f);
+      for (int i = 0; i < kWidth; ++i)
+        if (lane(mask, i)) set_lane(value, i, samplers_[base_ + i].next_1d());
       return value;
     }
-    Vec2Lanes next_2d(IntLanes mask) {
-      Vec2Lanes value{broadcast(0.0f), broadcast(0.0f)};
-      for_each_lane(lane_bits(mask), [&](int i) {
-        const Vec2 u = samplers_[base_ + i].next_2d();
-        value.x[i] = u.x;
-        value.y[i] = u.y;
-      });
+    Vec2For<Lanes> next_2d(LaneMaskType mask) {
+      Vec2For<Lanes> value{splat<Lanes>(0.0f), splat<Lanes>(0.0f)};
+      for (int i = 0; i < kWidth; ++i)
+        if (lane(mask, i)) {
+          const Vec2 u = samplers_[base_ + i].next_2d();
+          set_lane(value.x, i, u.x);
+          set_lane(value.y, i, u.y);
+        }
       return value;
     }
 
@@ -575,6 +643,7 @@ class WavefrontExecution {
     int base_;
   };
 
+#if defined(GLINT_AVX2)
   /// Appends the rays of lanes `lanes` of `rays` to the queue `blocks`, which holds `count`
   /// rays, in lane order: what RayBatch::set would write lane by lane, a column at a time. The
   /// queue has room for them.
