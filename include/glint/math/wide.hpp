@@ -154,6 +154,18 @@ inline bool all(bool mask) {
 }
 template <WideNumber M>
 inline bool any(M mask) {
+#if defined(__AVX512F__)
+  if constexpr (kLanesOf<M> == 16) {
+    const __m512i v = std::bit_cast<__m512i>(mask);
+    return _mm512_test_epi32_mask(v, v) != 0;
+  }
+#endif
+#if defined(__AVX__)
+  if constexpr (kLanesOf<M> == 8) {
+    const __m256i v = std::bit_cast<__m256i>(mask);
+    return !_mm256_testz_si256(v, v);
+  }
+#endif
   M folded = mask;
   for (int i = 1; i < kLanesOf<M>; ++i)
     folded[0] |= mask[i];
@@ -161,10 +173,7 @@ inline bool any(M mask) {
 }
 template <WideNumber M>
 inline bool all(M mask) {
-  M folded = mask;
-  for (int i = 1; i < kLanesOf<M>; ++i)
-    folded[0] &= mask[i];
-  return folded[0] != 0;
+  return !any(~mask);
 }
 
 /// `if_true` in the lanes where `mask` is true, `if_false` in the others.

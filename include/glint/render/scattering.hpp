@@ -311,7 +311,7 @@ class ReportMaterial {
             lobe_lanes<F>(Lobe::transmission)};
   }
 
-  SurfaceLanes<F> s_;
+  const SurfaceLanes<F>& s_;  // the interaction's, which outlives the material
   detail::BasicInterface<V3> at_;
   V3 incoming_;
   V3 albedo_;

@@ -245,8 +245,12 @@ class EmitterTable {
     const auto last = std::int32_t(cdf_.size()) - 1;
     I index = splat<I>(0);
     if (cdf_.size() <= kLinearChoices) {
-      for (const float step : cdf_)
-        index = select(u < step, index, index + 1);
+      for (const float step : cdf_) {
+        if constexpr (kLanesOf<F> == 1)
+          index += u < step ? 0 : 1;
+        else
+          index -= ~(u < step);  // a comparison is -1 where true: this adds 1 where false
+      }
     } else {
       for (int i = 0; i < kLanesOf<F>; ++i) {
         const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), lane(u, i));

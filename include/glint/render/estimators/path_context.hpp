@@ -7,6 +7,7 @@
 // I * colour * cos(theta) / d^2; a diffuse lobe reflects diffuse * colour / pi of its
 // irradiance as radiance.
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -176,10 +177,7 @@ class PathContext {
   /// The number of true lanes of a mask.
   template <typename M>
   static std::uint64_t count(M mask) {
-    std::uint64_t n = 0;
-    for (int i = 0; i < kLanesOf<M>; ++i)
-      n += lane(mask, i) ? 1 : 0;
-    return n;
+    return std::uint64_t(std::popcount(bits_of_mask(mask)));
   }
 
   /// The MIS weight of the emission of emitter `index`, met at distance `t` (outward normal
