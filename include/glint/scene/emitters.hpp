@@ -103,6 +103,26 @@ struct EmitterLanes {
   F probability;      ///< of the choice
 };
 
+/// How a Float's lanes of points see their emitters (the EmitterView of each lane as masks):
+/// `outside` where the point sees the sphere from outside, `none` where it lies on the sphere's
+/// outer surface, inside otherwise. `point_sphere` is the sphere each point lies on and
+/// `from_inside` the side of it the point is on: a point on the emitter itself sees it only
+/// from inside.
+template <typename F>
+struct EmitterViews {
+  MaskFor<F> outside;
+  MaskFor<F> none;
+};
+template <typename V3>
+EmitterViews<FloatOf<V3>> emitter_views(const V3& center, FloatOf<V3> radius,
+                                        UIntFor<FloatOf<V3>> sphere, const V3& point,
+                                        UIntFor<FloatOf<V3>> point_sphere,
+                                        MaskFor<FloatOf<V3>> from_inside) {
+  const auto on_emitter = point_sphere == sphere;
+  const V3 offset = point - center;
+  return {!on_emitter && dot(offset, offset) > radius * radius, on_emitter && !from_inside};
+}
+
 /// An emissive sphere. Its radiance leaves both sides of the surface, as every sphere's does.
 struct SphereEmitter {
   Vec3 center;
@@ -116,9 +136,11 @@ struct SphereEmitter {
   /// `from_inside` the side of it the point is on (a point on this emitter sees it only from
   /// inside).
   EmitterView view_from(const Vec3& point, std::uint32_t point_sphere, bool from_inside) const {
-    if (point_sphere == sphere) return from_inside ? EmitterView::inside : EmitterView::none;
-    const Vec3 offset = point - center;
-    return glm::dot(offset, offset) > radius * radius ? EmitterView::outside : EmitterView::inside;
+    const EmitterViews<float> view =
+        emitter_views(center, radius, sphere, point, point_sphere, from_inside);
+    return view.outside ? EmitterView::outside
+           : view.none  ? EmitterView::none
+                        : EmitterView::inside;
   }
 
   /// A direction from `point` towards the sphere, from two uniform numbers; none when the

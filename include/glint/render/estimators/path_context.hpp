@@ -134,14 +134,11 @@ class PathContext {
     const F u_choice = next_1d(draws, lanes);
     const Vec2For<F> u = next_2d(draws, lanes);
     const EmitterLanes<F> emitter = scene_.emitters().choose_lanes(u_choice);
-    // How each point sees its emitter (SphereEmitter::view_from): from its own surface only
-    // from inside; else from outside or inside. Lanes not sampled count as outside, so that
-    // they alone never make the area branch run.
-    const M on_emitter = emitter.sphere == it.sphere;
-    const V3 offset = it.point - emitter.center;
-    const M outside =
-        !lanes || (!on_emitter && dot(offset, offset) > emitter.radius * emitter.radius);
-    const M none = on_emitter && !it.at.from_inside;
+    // Lanes not sampled count as outside, so that they alone never make the area branch run.
+    const EmitterViews<F> view = emitter_views(emitter.center, emitter.radius, emitter.sphere,
+                                               it.point, it.sphere, it.at.from_inside);
+    const M outside = !lanes || view.outside;
+    const M none = view.none;
     const BasicEmitterSample<F> sample =
         sample_sphere_emitter(emitter.center, emitter.radius, it.point, outside, none, u);
     const V3 reflected = material.evaluate(sample.direction);
