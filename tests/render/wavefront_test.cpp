@@ -48,8 +48,16 @@ static_assert(glint::WavefrontExecution<fast_path_by_path>::kWidth == 1);
 static_assert(glint::WavefrontExecution<glint::variants::fast>::kWidth == glint::kLaneCount);
 #endif
 
-/// The chain variants, and `fast` shaded path by path: both ways of shading.
-using WavefrontConfigs = decltype(std::tuple_cat(ChainVariants{}, std::tuple<fast_path_by_path>{}));
+/// `fast` with StratifiedSampler, a sampler without a form for several lanes: the wavefront
+/// shades eight paths at a time and draws their samples path by path.
+struct fast_stratified : glint::variants::fast::with_sampler<glint::StratifiedSampler> {
+  static constexpr glint::VariantInfo info{"fast_stratified", "`fast`, stratified samples", true};
+};
+static_assert(!glint::WavefrontExecution<fast_stratified>::kSamplersInLanes);
+
+/// The chain variants, `fast` shaded path by path and `fast` with a sampler drawn path by path.
+using WavefrontConfigs =
+    decltype(std::tuple_cat(ChainVariants{}, std::tuple<fast_path_by_path, fast_stratified>{}));
 
 /// The bench scenes and the report's scenes, sorted by name.
 std::vector<fs::path> comparison_scenes() {
