@@ -44,8 +44,10 @@ struct fast_path_by_path : glint::variants::fast::with_fresnel<ScalarOnlyFresnel
                                            true};
 };
 static_assert(glint::WavefrontExecution<fast_path_by_path>::kWidth == 1);
-#if defined(GLINT_AVX2)
-static_assert(glint::WavefrontExecution<glint::variants::fast>::kWidth == glint::kLaneCount);
+#if defined(GLINT_AVX2) && defined(__AVX512F__)
+static_assert(glint::WavefrontExecution<glint::variants::fast>::kWidth == 16);
+#elif defined(GLINT_AVX2)
+static_assert(glint::WavefrontExecution<glint::variants::fast>::kWidth == 8);
 #endif
 
 /// `fast` with StratifiedSampler, a sampler without a form for several lanes: the wavefront

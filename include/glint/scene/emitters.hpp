@@ -244,6 +244,16 @@ class EmitterTable {
       chosen.radius = words[3];
       chosen.radiance = {words[4], words[5], words[6]};
       chosen.sphere = std::bit_cast<UintLanes>(words[7]);
+    } else if constexpr (kLanesOf<F> == 2 * kLaneCount) {
+      // Two transposes of eight.
+      const EmitterLanes<FloatLanes> low = choose_lanes(low_half(u));
+      const EmitterLanes<FloatLanes> high = choose_lanes(high_half(u));
+      const auto both3 = [](const Vec3Lanes& a, const Vec3Lanes& b) {
+        return Vector3<F>{join(a.x, b.x), join(a.y, b.y), join(a.z, b.z)};
+      };
+      chosen = {both3(low.center, high.center), join(low.radius, high.radius),
+                both3(low.radiance, high.radiance), join(low.sphere, high.sphere),
+                join(low.probability, high.probability)};
 #endif
     } else {
       for (int i = 0; i < kLanesOf<F>; ++i) {

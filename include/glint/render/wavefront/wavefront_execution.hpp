@@ -69,7 +69,7 @@ concept WavefrontConfig =
 /// Whether every policy the camera and shading stages call has a form for the lanes of a
 /// Float<W> (W paths at once): then WavefrontExecution runs those stages W paths at a time. A
 /// user's policy written for one path still renders, path by path. (The sphere shading is
-/// called lane by lane, and so is a sampler without a Lanes form: see LanewiseSampler.)
+/// called lane by lane, and so is a sampler without a Wide form: see WideSampler.)
 template <typename C, int W>
 concept PoliciesAtWidth = requires(Vec2For<Float<W>> u, Float<W> value, Int<W> depth, float sigma) {
   { C::antialiasing::offset(u, sigma) } -> std::same_as<Vec2For<Float<W>>>;
@@ -142,13 +142,15 @@ struct PieceLayout {
 
 }  // namespace detail
 
-/// The shading width WavefrontExecution<C> uses: 8 paths where the build has AVX2 and C's
-/// policies have a form for eight lanes, else 1. (16, AVX-512's width, gives the same image
-/// and is chosen explicitly: on the bench scenes it is not faster, since the sphere and emitter
-/// records are gathered in two halves and the batched queries trace eight rays at a time;
-/// bench/features_bench.cpp measures it.)
+/// The shading width WavefrontExecution<C> uses: a SIMD register's paths where C's policies
+/// have a form for that many lanes, 16 with AVX-512 and 8 with AVX2, else 1. (Sixteen lanes
+/// measured 1.00-1.16x the speed of eight on the bench scenes, on a Zen 5 core: the shading's
+/// share shrinks, the queries trace eight rays at a time at either width.)
 template <typename C>
 consteval int default_shading_width() {
+#if defined(GLINT_AVX2) && defined(__AVX512F__)
+  if constexpr (PoliciesAtWidth<C, 16>) return 16;
+#endif
 #if defined(GLINT_AVX2)
   if constexpr (PoliciesAtWidth<C, 8>) return 8;
 #endif
