@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_bvh.hpp"
 #include "glint/geometry/sphere_set.hpp"
+#include "glint/io/scene_reader.hpp"
 #include "glint/math/random.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/policy/antialiasing.hpp"
@@ -541,6 +543,8 @@ BENCHMARK(BM_SceneOccluded)->ArgName("spheres")->Arg(40)->Arg(1000)->Arg(100000)
 // queries, on the same scenes as above, for camera rays (4 x 2 pixel blocks of a 256 x 256
 // image from the scene's camera, each block an 8-ray batch) and the random rays above.
 
+constexpr int kBatch = glint::RayBatch::kWidth;
+
 enum BatchRays { kCameraRays = 0, kRandomRays = 1 };
 enum BatchMode { kEightSingle = 0, kBatched = 1 };
 
@@ -548,7 +552,7 @@ struct BatchInputs {
   SceneInputs in;
   std::vector<glint::RayBatch> batches;
 
-  BatchInputs(int count, int kind, bool shadow) : in(count), batches(kInputs / 8) {
+  BatchInputs(int count, int kind, bool shadow) : in(count), batches(kInputs / kBatch) {
     glint::Pcg32 rng(5, 5);
     const glint::CameraDescription& camera = in.scene.camera();
     const Vec3 forward = glm::normalize(camera.look_at - camera.position);
@@ -562,7 +566,7 @@ struct BatchInputs {
       batch.heads_into_origin_sphere = 0;
       const int x0 = int(rng.next_u32() % (kImage / 4)) * 4,
                 y0 = int(rng.next_u32() % (kImage / 2)) * 2;
-      for (int lane = 0; lane < 8; ++lane) {
+      for (int lane = 0; lane < kBatch; ++lane) {
         glint::Ray ray;
         if (kind == kCameraRays) {
           const float u = (float(x0 + lane % 4) + 0.5f) / kImage * 2.0f - 1.0f;
@@ -572,7 +576,7 @@ struct BatchInputs {
           // Shadow rays: as far as the middle of the spheres.
           if (shadow) ray.t_max = glm::length(camera.look_at - camera.position);
         } else {
-          ray = in.rays[8 * b + std::size_t(lane)];
+          ray = in.rays[kBatch * b + std::size_t(lane)];
           if (shadow) ray.t_max = 0.25f * size;
         }
         batch.set(lane, ray);
@@ -588,17 +592,17 @@ void BM_SceneBatchClosestHit(benchmark::State& state) {
   std::size_t i = 0;
   glint::HitBatch hits;
   for (auto _ : state) {
-    const glint::RayBatch& batch = inputs.batches[i++ & (kMask / 8)];
+    const glint::RayBatch& batch = inputs.batches[i++ & (kMask / kBatch)];
     if (batched) {
       benchmark::DoNotOptimize(
           inputs.in.scene.closest_hits(batch, glint::RayBatch::kAllLanes, hits));
       benchmark::ClobberMemory();
     } else {
-      for (int lane = 0; lane < 8; ++lane)
+      for (int lane = 0; lane < kBatch; ++lane)
         benchmark::DoNotOptimize(inputs.in.scene.closest_hit(batch.get(lane)));
     }
   }
-  state.SetItemsProcessed(8 * state.iterations());
+  state.SetItemsProcessed(kBatch * state.iterations());
 }
 BENCHMARK(BM_SceneBatchClosestHit)
     ->ArgNames({"spheres", "random", "batched"})
@@ -610,19 +614,134 @@ void BM_SceneBatchOccluded(benchmark::State& state) {
   const bool batched = state.range(2) == kBatched;
   std::size_t i = 0;
   for (auto _ : state) {
-    const glint::RayBatch& batch = inputs.batches[i++ & (kMask / 8)];
+    const glint::RayBatch& batch = inputs.batches[i++ & (kMask / kBatch)];
     if (batched) {
       benchmark::DoNotOptimize(inputs.in.scene.occluded(batch, glint::RayBatch::kAllLanes));
     } else {
-      for (int lane = 0; lane < 8; ++lane)
+      for (int lane = 0; lane < kBatch; ++lane)
         benchmark::DoNotOptimize(inputs.in.scene.occluded(batch.get(lane)));
     }
   }
-  state.SetItemsProcessed(8 * state.iterations());
+  state.SetItemsProcessed(kBatch * state.iterations());
 }
 BENCHMARK(BM_SceneBatchOccluded)
     ->ArgNames({"spheres", "random", "batched"})
     ->ArgsProduct({{40, 10000, 100000}, {kCameraRays, kRandomRays}, {kEightSingle, kBatched}});
+
+// ---------------------------------------------------------------------------------------------
+// The linear scan or the BVH: Scene's batched queries on one scene built both ways
+// (Scene::build's linear_scene_size), for the rays of a renderer: 4 x 2 pixel blocks of camera
+// rays, the diffuse bounces from their hits (one batch per block, each ray leaving the sphere it
+// hit) for closest_hits, and from the same hits the shadow rays toward the scene's first point
+// light, or else the centre of its first emissive sphere, for occluded. Scene::kLinearSceneSize
+// is set where the linear scan stops beating the BVH on random scenes.
+
+enum Accelerator { kBvh = 0, kLinear = 1 };
+enum Query { kClosestHits = 0, kOccluded = 1 };
+
+struct RendererRays {
+  glint::Scene scene;
+  std::vector<glint::RayBatch> closest;  ///< camera and bounce batches, in turn
+  std::vector<glint::RayBatch> shadow;
+
+  RendererRays(const glint::SceneDescription& description, Accelerator accelerator)
+      : scene(glint::Scene::build(description,
+                                  accelerator == kLinear ? description.spheres.size() : 0)) {
+    Vec3 target = description.camera.look_at;
+    float target_radius = 0.0f;
+    if (!description.lights.empty()) {
+      target = description.lights.front().position;
+    } else {
+      for (const glint::SphereDescription& sphere : description.spheres)
+        if (sphere.material.is_emissive()) {
+          target = sphere.center;
+          target_radius = sphere.radius;
+          break;
+        }
+    }
+    const glint::CameraDescription& camera = description.camera;
+    const Vec3 forward = glm::normalize(camera.look_at - camera.position);
+    const Vec3 right = glm::normalize(glm::cross(forward, camera.up));
+    const Vec3 up = glm::cross(right, forward);
+    const float half_height = std::tan(0.5f * camera.fov_degrees * glint::kPi / 180.0f);
+    constexpr int kImage = 128;
+    glint::Pcg32 rng(9, 9);
+    for (int y0 = 0; y0 < kImage; y0 += 2)
+      for (int x0 = 0; x0 < kImage; x0 += kBatch / 2) {
+        glint::RayBatch camera_rays, bounces, shadow_rays;
+        for (int lane = 0; lane < kBatch; ++lane) {
+          glint::Ray ray;
+          const float u = (float(x0 + lane % (kBatch / 2)) + 0.5f) / kImage * 2.0f - 1.0f;
+          const float v = 1.0f - (float(y0 + lane / (kBatch / 2)) + 0.5f) / kImage * 2.0f;
+          ray.origin = camera.position;
+          ray.direction = glm::normalize(forward + half_height * (u * right + v * up));
+          camera_rays.set(lane, ray);
+          glint::Ray bounce = ray, shadow_ray = ray;
+          if (const std::optional<glint::SphereHit> hit = scene.closest_hit(ray)) {
+            const glint::SurfaceHit surface = scene.surface_hit(ray, *hit);
+            Vec3 direction = random_unit_vector(rng);
+            if (glm::dot(direction, surface.outward_normal) < 0.0f) direction = -direction;
+            bounce = glint::ray_leaving_sphere(surface.point, direction, hit->sphere, false);
+            const Vec3 to_target = target - surface.point;
+            const float distance = glm::length(to_target);
+            shadow_ray =
+                glint::ray_leaving_sphere(surface.point, to_target / distance, hit->sphere,
+                                          surface.outward_normal, distance - target_radius);
+          }
+          bounces.set(lane, bounce);
+          shadow_rays.set(lane, shadow_ray);
+        }
+        closest.push_back(camera_rays);
+        closest.push_back(bounces);
+        shadow.push_back(shadow_rays);
+      }
+  }
+};
+
+void run_linear_or_bvh(benchmark::State& state, const glint::SceneDescription& description) {
+  const RendererRays rays(description, static_cast<Accelerator>(state.range(1)));
+  const bool occluded = state.range(2) == kOccluded;
+  const std::vector<glint::RayBatch>& batches = occluded ? rays.shadow : rays.closest;
+  std::size_t i = 0;
+  glint::HitBatch hits;
+  for (auto _ : state) {
+    const glint::RayBatch& batch = batches[i++ % batches.size()];
+    if (occluded) {
+      benchmark::DoNotOptimize(rays.scene.occluded(batch, glint::RayBatch::kAllLanes));
+    } else {
+      benchmark::DoNotOptimize(rays.scene.closest_hits(batch, glint::RayBatch::kAllLanes, hits));
+      benchmark::ClobberMemory();
+    }
+  }
+  state.SetItemsProcessed(kBatch * state.iterations());
+  state.SetLabel(std::to_string(description.spheres.size()) + " spheres");
+}
+
+/// A random scene of the generator (SceneInputs: walls and two point lights included).
+void BM_LinearOrBvhRandom(benchmark::State& state) {
+  run_linear_or_bvh(
+      state, glint::generate_random_scene(SceneInputs::parameters(static_cast<int>(state.range(0))))
+                 .scene);
+}
+BENCHMARK(BM_LinearOrBvhRandom)
+    ->ArgNames({"spheres", "linear", "occluded"})
+    ->ArgsProduct({{16, 32, 48, 64, 80, 96, 112, 128, 160, 192, 256, 384, 512},
+                   {kBvh, kLinear},
+                   {kClosestHits, kOccluded}});
+
+const char* const kBenchScenes[] = {"cornell", "lamp-room", "many-lamps", "nested-glass",
+                                    "random40"};
+
+/// A scene of bench/scenes (the argument indexes kBenchScenes).
+void BM_LinearOrBvhBenchScene(benchmark::State& state) {
+  const std::string name = kBenchScenes[state.range(0)];
+  run_linear_or_bvh(state, glint::read_scene_file(std::string(GLINT_SOURCE_DIR) + "/bench/scenes/" +
+                                                  name + ".scene"));
+  state.SetLabel(name);
+}
+BENCHMARK(BM_LinearOrBvhBenchScene)
+    ->ArgNames({"scene", "linear", "occluded"})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {kBvh, kLinear}, {kClosestHits, kOccluded}});
 
 #ifdef GLINT_AVX2
 /// The hierarchy alone (the scene's spheres but its walls), packet or one traversal per lane,
@@ -642,19 +761,19 @@ void BM_BvhBatch(benchmark::State& state) {
   const bool any = state.range(3) == 1;
   std::size_t i = 0;
   for (auto _ : state) {
-    const glint::RayBatch& batch = inputs.batches[i++ & (kMask / 8)];
+    const glint::RayBatch& batch = inputs.batches[i++ & (kMask / kBatch)];
     if (any) {
       benchmark::DoNotOptimize(packet ? bvh.any_hits_packet(batch, glint::RayBatch::kAllLanes)
                                       : bvh.any_hits_per_lane(batch, glint::RayBatch::kAllLanes));
     } else {
-      glint::SphereHit hits[8];
+      glint::SphereHit hits[kBatch];
       benchmark::DoNotOptimize(
           packet ? bvh.closest_hits_packet(batch, glint::RayBatch::kAllLanes, hits)
                  : bvh.closest_hits_per_lane(batch, glint::RayBatch::kAllLanes, hits));
       benchmark::ClobberMemory();
     }
   }
-  state.SetItemsProcessed(8 * state.iterations());
+  state.SetItemsProcessed(kBatch * state.iterations());
 }
 BENCHMARK(BM_BvhBatch)
     ->ArgNames({"spheres", "random", "packet", "occluded"})

@@ -468,3 +468,46 @@ TEST_CASE("same_octant", "[geometry][ray_batch]") {
   CHECK(glint::same_octant(batch, RayBatch::kAllLanes & ~(LaneMask(1) << 3)));
   CHECK(glint::same_octant(batch, LaneMask(1) << 3));
 }
+
+TEST_CASE("closest_hits and occluded: either side of Scene::kLinearSceneSize",
+          "[geometry][ray_batch]") {
+  // The same scene with every sphere but the walls scanned linearly or put in the BVH
+  // (Scene::build's linear_scene_size), at the threshold's size and one past it: each answers
+  // its batches as its single-ray queries, and the two agree on every ray's sphere and
+  // occlusion, their t to rounding (the AVX2 scan and the BVH's scalar leaves round apart).
+  constexpr auto kSize = glint::Scene::kLinearSceneSize;
+  for (const std::size_t count : {kSize, kSize + 1}) {
+    DYNAMIC_SECTION(count << " spheres") {
+      glint::Pcg32 rng(std::uint64_t(count), 7);
+      TestScene test;
+      add_room(test, 30.0f, 1e5f);
+      while (test.spheres.size() < count) {
+        const Vec3 c(uniform(rng, -20.0f, 20.0f), uniform(rng, -20.0f, 20.0f),
+                     uniform(rng, -20.0f, 20.0f));
+        test.add(c, uniform(rng, 0.5f, 4.0f));
+      }
+      test.description.spheres = test.spheres;
+      const glint::Scene linear = glint::Scene::build(test.description, count);
+      const glint::Scene hierarchy = glint::Scene::build(test.description, count - 1);
+      check_coverage(check_scene(linear, test.spheres, 25.0f, 300 + count, 300));
+      check_coverage(check_scene(hierarchy, test.spheres, 25.0f, 300 + count, 300));
+      int hits = 0;
+      for (int i = 0; i < 4000; ++i) {
+        Ray ray;
+        ray.origin = Vec3(uniform(rng, -25.0f, 25.0f), uniform(rng, -25.0f, 25.0f),
+                          uniform(rng, -25.0f, 25.0f));
+        ray.direction = unit_vector(rng);
+        if (i % 3 == 0) ray.t_max = uniform(rng, 0.0f, 30.0f);
+        const std::optional<glint::SphereHit> a = linear.closest_hit(ray);
+        const std::optional<glint::SphereHit> b = hierarchy.closest_hit(ray);
+        REQUIRE(a.has_value() == b.has_value());
+        REQUIRE(linear.occluded(ray) == hierarchy.occluded(ray));
+        if (!a) continue;
+        ++hits;
+        REQUIRE(a->sphere == b->sphere);
+        REQUIRE(std::abs(a->t - b->t) <= 1e-5f * (a->t + 30.0f));
+      }
+      CHECK(hits > 1000);
+    }
+  }
+}

@@ -276,7 +276,9 @@ TEST_CASE("the leaf groups hold each leaf's spheres, as the binary tree has them
           REQUIRE(upper[axis] >= s.center[axis] + s.radius);
         }
       }
-      for (std::uint32_t g = first / 8; g < (first + count + 7) / 8; ++g) {
+      constexpr std::uint32_t kGroupSize = glint::SphereGroup::kSize;
+      for (std::uint32_t g = first / kGroupSize; g < (first + count + kGroupSize - 1) / kGroupSize;
+           ++g) {
         REQUIRE_FALSE(group_used[g]);  // no two leaves share a group
         group_used[g] = true;
       }
@@ -298,15 +300,17 @@ TEST_CASE("test_grouped_spheres answers as test_spheres, bit for bit", "[bvh]") 
         i % 97 == 0 ? 1e4f : (i % 13 == 0 ? 1e-3f : 0.05f + 4.0f * rng.next_float());
     spheres.push_back({random_point(rng, 60.0f), radius, i});
   }
-  std::vector<glint::SphereGroup> groups(spheres.size() / 8);
+  constexpr std::size_t kGroupSize = glint::SphereGroup::kSize;
+  std::vector<glint::SphereGroup> groups(spheres.size() / kGroupSize);
   std::vector<glint::bvh::LeafSphere> flat;
   for (std::size_t i = 0; i < spheres.size(); ++i) {
-    glint::SphereGroup& g = groups[i / 8];
-    g.cx[i % 8] = spheres[i].center.x;
-    g.cy[i % 8] = spheres[i].center.y;
-    g.cz[i % 8] = spheres[i].center.z;
-    g.radius[i % 8] = spheres[i].radius;
-    g.id[i % 8] = spheres[i].id;
+    glint::SphereGroup& g = groups[i / kGroupSize];
+    const std::size_t lane = i % kGroupSize;
+    g.cx[lane] = spheres[i].center.x;
+    g.cy[lane] = spheres[i].center.y;
+    g.cz[lane] = spheres[i].center.z;
+    g.radius[lane] = spheres[i].radius;
+    g.id[lane] = spheres[i].id;
     flat.push_back({spheres[i].center, spheres[i].radius, spheres[i].id});
   }
   struct Flat {

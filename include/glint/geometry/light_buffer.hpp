@@ -10,14 +10,15 @@
 // (avx2::test_lanes). A cell lists every sphere that the kernel could find a hit on for a ray
 // of that cell, with margins worked out below (see LightBuffer::Margins); a ray that does not
 // end at the light to within those margins (LightBuffer::ends_here) is left to the full scan.
-// Only the spheres of the linear set (small scenes) are listed: up to 64, eight groups of
-// eight, and a cell is one byte, the groups it needs.
+// Only the spheres of the linear set (small scenes) are listed: a cell is one byte, a bit for
+// each group of kBatchWidth spheres it needs (so up to 64 spheres).
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <vector>
 
@@ -35,9 +36,13 @@ class LightBuffer {
   /// Cells along an edge of a face of the cube of directions.
   static constexpr int kCellsPerEdge = 32;
   static constexpr int kCells = 6 * kCellsPerEdge * kCellsPerEdge;
-  /// The most spheres a buffer lists: a cell's groups of eight are the bits of a byte.
-  static constexpr std::size_t kMaxSpheres = 64;
-  static constexpr std::size_t kGroupSize = 8;
+  /// The spheres that one bit of a cell stands for: those the kernel tests at once.
+  static constexpr std::size_t kGroupSize = kBatchWidth;
+  /// The groups a cell lists, a bit each.
+  using CellGroups = std::uint8_t;
+  /// The most spheres a buffer lists: a group for each bit of a cell.
+  static constexpr std::size_t kMaxSpheres =
+      std::size_t(std::numeric_limits<CellGroups>::digits) * kGroupSize;
 
   /// The cell of direction `w` (not zero): the face of its largest coordinate in magnitude
   /// (x, y, z: faces 0-1, 2-3, 4-5, the second for a negative one, the first on ties), and
@@ -98,13 +103,13 @@ class LightBuffer {
     cell_groups_.assign(std::size_t(kCells), 0);
     const std::vector<CellCone>& cells = cell_cones();
     for (std::size_t slot = 0; slot < count; ++slot) {
-      const auto group = std::uint8_t(1u << (slot / kGroupSize));
+      const auto group = CellGroups(1u << (slot / kGroupSize));
       const double distance = distance_to(columns(), slot);
       const double sphere_radius = std::sqrt(double(r2_[slot]));
       const double radius = sphere_radius + margins.kernel_error(sphere_radius);
       if (distance - radius <= margins.near_light) {
         // Near or around the light: in every direction.
-        for (std::uint8_t& groups : cell_groups_)
+        for (CellGroups& groups : cell_groups_)
           groups |= group;
         continue;
       }
@@ -192,7 +197,8 @@ class LightBuffer {
     return false;
   }
 
-  /// The groups of eight spheres (bit g: columns() g*8 .. g*8+7) listed in a cell.
+  /// The groups of spheres (bit g: columns() g kGroupSize .. (g + 1) kGroupSize - 1) listed in
+  /// a cell.
   unsigned groups(int cell) const { return cell_groups_[std::size_t(cell)]; }
 
   avx2::SphereColumns columns() const {
@@ -309,7 +315,7 @@ class LightBuffer {
   Vec3 light_{0.0f};
   float max_length_ = 0.0f;
   float endpoint_tolerance2_ = 0.0f;
-  std::vector<std::uint8_t> cell_groups_;
+  std::vector<CellGroups> cell_groups_;
   detail::AlignedArray<float> cx_, cy_, cz_, r2_;
   detail::AlignedArray<std::uint32_t> ids_;
   std::size_t count_ = 0;

@@ -49,7 +49,6 @@ class LinearScan {
 #ifdef GLINT_AVX2
   /// The queries with the 8-wide kernel.
   bool closest_hit_avx2(const Ray& ray, SphereHit& hit) const {
-    static_assert(Set::kLanes == avx2::kWidth);
     SphereHit best = hit_to_beat(ray, hit);
     if (!avx2::closest_hit(ray, best, set().columns())) return false;
     hit = best;

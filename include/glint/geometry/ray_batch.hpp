@@ -1,37 +1,43 @@
 #pragma once
-// Eight rays and their hits in structure-of-arrays form, for the batched queries of the scene's
-// accelerators (closest hit and occlusion for eight rays at once) that the wavefront renderer
-// uses. A lane mask says which lanes hold a ray: bit i set means lane i is active. The batched
-// queries answer exactly what the single-ray queries answer for each active lane, bit for bit;
-// those stay the reference.
+// A batch of rays (kBatchWidth, geometry/simd.hpp) and their hits in structure-of-arrays form,
+// for the batched queries of the scene's accelerators (closest hit and occlusion for a batch at
+// once) that the wavefront renderer uses. A lane mask says which lanes hold a ray: bit i set means
+// lane i is active. The batched queries answer exactly what the single-ray queries answer for each
+// active lane, bit for bit; those stay the reference.
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 
 #include "glint/geometry/accelerator.hpp"
 #include "glint/geometry/ray.hpp"
+#include "glint/geometry/simd.hpp"
 
 namespace glint {
 
 /// Bit i is lane i of a batch.
 using LaneMask = std::uint32_t;
+static_assert(kBatchWidth < 32,
+              "a LaneMask holds a bit per lane of a batch, and kAllLanes one more");
 
 /// What a caller of the batched queries knows of its rays: a hint for the traversal, which
 /// changes only its speed, never an answer (like Embree's coherent and incoherent contexts).
 enum class RayCoherence {
-  /// Batches of a renderer: the eight rays may go different ways, but consecutive batches
+  /// Batches of a renderer: the rays of a batch may go different ways, but consecutive batches
   /// come from neighbouring paths and reuse what the last ones brought into the caches. A
   /// BVH takes batches in one octant as a packet, the others ray by ray.
   unknown,
   /// Rays with nothing in common from one batch to the next (queries scattered over a scene):
-  /// the eight traversals of a BVH larger than the caches are interleaved, so that they wait
+  /// the traversals of a batch's rays in a BVH larger than the caches are interleaved, so that they
+  /// wait
   /// on memory together (SphereBvh::kInterleavedTraversalBytes).
   incoherent,
 };
 
 struct alignas(32) RayBatch {
-  static constexpr int kWidth = 8;
+  static constexpr int kWidth = kBatchWidth;
   static constexpr LaneMask kAllLanes = (LaneMask(1) << kWidth) - 1;
 
   float origin_x[kWidth];
@@ -76,11 +82,13 @@ struct alignas(32) RayBatch {
 /// A closest-hit answer per lane: the hit, or t = kInfinity and kNoSphere where there is none
 /// (as every lane starts).
 struct alignas(32) HitBatch {
-  static_assert(RayBatch::kWidth == 8);
-  float t[RayBatch::kWidth] = {kInfinity, kInfinity, kInfinity, kInfinity,
-                               kInfinity, kInfinity, kInfinity, kInfinity};
-  std::uint32_t sphere[RayBatch::kWidth] = {kNoSphere, kNoSphere, kNoSphere, kNoSphere,
-                                            kNoSphere, kNoSphere, kNoSphere, kNoSphere};
+  float t[RayBatch::kWidth];
+  std::uint32_t sphere[RayBatch::kWidth];
+
+  HitBatch() {
+    std::fill(std::begin(t), std::end(t), kInfinity);
+    std::fill(std::begin(sphere), std::end(sphere), kNoSphere);
+  }
 
   SphereHit get(int lane) const { return {t[lane], sphere[lane]}; }
   void set(int lane, const SphereHit& hit) {

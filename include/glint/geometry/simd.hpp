@@ -9,6 +9,16 @@
 // Each is defined when the compiler targets that instruction set (e.g. -march=native) and
 // GLINT_NO_SIMD is not defined.
 
+namespace glint {
+
+/// The lanes of glint's batched geometry, whatever the instruction set: the rays of a RayBatch,
+/// the spheres that a linear set's scan and a BVH leaf group test at once, the floats of the
+/// AVX2 registers that hold them, and the eight-lane width of math/lanes.hpp. Every other lane
+/// count of the geometry derives from it.
+inline constexpr int kBatchWidth = 8;
+
+}  // namespace glint
+
 #if !defined(GLINT_NO_SIMD)
 #if defined(__AVX2__) && defined(__FMA__)
 #define GLINT_AVX2 1
@@ -26,6 +36,9 @@
 #include <cstdint>
 
 namespace glint::avx2 {
+
+// The AVX2 kernels hold a batch in a __m256 of floats (or of 32-bit integers), one lane each.
+static_assert(kBatchWidth == 8, "the AVX2 kernels are written for eight lanes");
 
 /// All ones in the lanes i of an AVX register for which bit i of `mask` is set.
 inline __m256i lane_vector(std::uint32_t mask) {

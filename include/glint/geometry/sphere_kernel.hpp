@@ -152,20 +152,20 @@ bool test_spheres(const Ray& ray, const Spheres& spheres, std::size_t begin, std
   return found;
 }
 
-/// Spheres in groups of eight, structure-of-arrays within a group (the leaves of SphereBvh):
-/// one AVX2 pass culls a group's spheres (avx2::may_meet), test_sphere decides for the rest.
-/// A group holds the spheres of one leaf, or of the first or last eight of one; its lanes past
-/// them are padding, never read as spheres.
+/// Spheres in groups of kBatchWidth, structure-of-arrays within a group (the leaves of
+/// SphereBvh): one AVX2 pass culls a group's spheres (avx2::may_meet), test_sphere decides for
+/// the rest. A group holds the spheres of one leaf, or of the first or last kSize of one; its
+/// lanes past them are padding, never read as spheres.
 struct alignas(32) SphereGroup {
-  static constexpr std::size_t kSize = 8;
+  static constexpr std::size_t kSize = kBatchWidth;
   float cx[kSize], cy[kSize], cz[kSize];
   float radius[kSize];
   std::uint32_t id[kSize];
 };
-static_assert(sizeof(SphereGroup) == 160);
+static_assert(sizeof(SphereGroup) == 5 * 4 * SphereGroup::kSize);
 
-/// SphereGroups as test_spheres reads them: sphere i is lane i % 8 of group i / 8. The centre,
-/// the radius and its square are those of the sphere as given, so that test_sphere answers
+/// SphereGroups as test_spheres reads them: sphere i is lane i % kSize of group i / kSize. The
+/// centre, the radius and its square are those of the sphere as given, so that test_sphere answers
 /// bit for bit as for any other storage of the same spheres.
 struct GroupedSpheres {
   const SphereGroup* groups;
@@ -187,10 +187,8 @@ struct GroupedSpheres {
 #ifdef GLINT_AVX2
 namespace avx2 {
 
-inline constexpr std::size_t kWidth = 8;
-
-/// Spheres in structure-of-arrays form, 32-byte aligned and padded to a multiple of kWidth
-/// with spheres that no ray can hit.
+/// Spheres in structure-of-arrays form, 32-byte aligned and padded to a multiple of
+/// kBatchWidth with spheres that no ray can hit.
 struct SphereColumns {
   const float* cx;
   const float* cy;
@@ -383,7 +381,7 @@ inline bool first_roots(const RayLanes& ray, const AnchoredLanes& sphere, __m256
   const __m256 abs_c = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), c);
   const __m256 near = _mm256_cmp_ps(abs_c, r2, _CMP_NGT_UQ);
   __m256 discriminant = near_form;
-  if (_mm256_movemask_ps(near) != 0xFF) {
+  if (_mm256_movemask_ps(near) != (1 << kBatchWidth) - 1) {
     const __m256 px = _mm256_fnmadd_ps(b, ray.dx, fx);
     const __m256 py = _mm256_fnmadd_ps(b, ray.dy, fy);
     const __m256 pz = _mm256_fnmadd_ps(b, ray.dz, fz);
@@ -437,7 +435,7 @@ inline SphereHit first_in_hit_order(const HitLanes& lanes) {
   __m256 smallest = _mm256_min_ps(lanes.t, _mm256_permute_ps(lanes.t, 0b10110001));
   smallest = _mm256_min_ps(smallest, _mm256_permute_ps(smallest, 0b01001110));
   smallest = _mm256_min_ps(smallest, _mm256_permute2f128_ps(smallest, smallest, 1));
-  alignas(32) std::uint32_t ids[kWidth];
+  alignas(32) std::uint32_t ids[kBatchWidth];
   _mm256_store_si256(reinterpret_cast<__m256i*>(ids), lanes.sphere);
   SphereHit first{_mm256_cvtss_f32(smallest), kNoSphere};
   const int at_smallest = _mm256_movemask_ps(_mm256_cmp_ps(lanes.t, smallest, _CMP_EQ_OQ));
@@ -477,7 +475,7 @@ inline unsigned may_meet(const RayLanes& ray, const SphereGroup& group) {
 template <bool kAnyHit, class Columns>
 inline bool scan(const RayLanes& ray, const Columns& spheres, HitLanes& best) {
   bool found = false;
-  for (std::size_t base = 0; base < spheres.size; base += kWidth) {
+  for (std::size_t base = 0; base < spheres.size; base += std::size_t(kBatchWidth)) {
     if (!test_8_spheres(ray, spheres, base, best)) continue;
     found = true;
     if constexpr (kAnyHit) break;
@@ -518,7 +516,8 @@ struct GroupRay {
 };
 #endif
 
-/// test_spheres for spheres [first, first + count) of `groups`, `first` a multiple of eight:
+/// test_spheres for spheres [first, first + count) of `groups`, `first` a multiple of
+/// SphereGroup::kSize:
 /// with AVX2, a group's spheres that the ray cannot meet (avx2::may_meet) are skipped before
 /// test_sphere, which decides for the others, so the answer is test_spheres' bit for bit.
 /// `lanes` is GroupRay(ray), made once per ray.

@@ -1,6 +1,6 @@
 #pragma once
-// Spheres in structure-of-arrays form, padded to a multiple of eight, scanned linearly by the
-// leaf kernel: 8-wide with AVX2 (see simd.hpp), else sphere by sphere (linear_scan.hpp).
+// Spheres in structure-of-arrays form, padded to a multiple of kBatchWidth (simd.hpp), scanned
+// linearly by the leaf kernel: 8-wide with AVX2, else sphere by sphere (linear_scan.hpp).
 
 #include <cstddef>
 #include <cstdint>
@@ -16,9 +16,6 @@ namespace glint {
 
 class SphereSet : public LinearScan<SphereSet> {
  public:
-  /// The storage is padded to a multiple of this many spheres.
-  static constexpr std::size_t kLanes = 8;
-
   SphereSet() = default;
 
   /// Adds a sphere known to the rest of the scene as `id` (what hits report, and what
@@ -50,7 +47,7 @@ class SphereSet : public LinearScan<SphereSet> {
  private:
   void grow() {
     // Padding spheres have squared radius -1: no ray meets them.
-    const std::size_t new_size = cx_.size() + kLanes;
+    const std::size_t new_size = cx_.size() + std::size_t(kBatchWidth);
     cx_.resize(new_size, 0.0f);
     cy_.resize(new_size, 0.0f);
     cz_.resize(new_size, 0.0f);

@@ -1,10 +1,10 @@
 #pragma once
 // Huge spheres (the walls and floors of a scene) as anchored spheres (ray_sphere.hpp), in
-// structure-of-arrays form padded to a multiple of eight, scanned linearly like SphereSet: the
-// same queries, hit order and origin-sphere rule, but a kernel whose error scales with the
-// distance of a ray's origin from the anchor instead of with the radius. Anchoring every wall at
-// its surface point nearest the camera makes the rays that matter most exact enough: a camera
-// 0.001 above a floor of radius 1e9 stands on it instead of seeing through it.
+// structure-of-arrays form padded to a multiple of kBatchWidth (simd.hpp), scanned linearly
+// like SphereSet: the same queries, hit order and origin-sphere rule, but a kernel whose error
+// scales with the distance of a ray's origin from the anchor instead of with the radius. Anchoring
+// every wall at its surface point nearest the camera makes the rays that matter most exact enough:
+// a camera 0.001 above a floor of radius 1e9 stands on it instead of seeing through it.
 
 #include <cstddef>
 #include <cstdint>
@@ -23,9 +23,6 @@ namespace glint {
 
 class WallSet : public LinearScan<WallSet> {
  public:
-  /// The storage is padded to a multiple of this many spheres.
-  static constexpr std::size_t kLanes = 8;
-
   WallSet() = default;
 
   /// Adds a sphere known to the rest of the scene as `id`, anchored at its surface point
@@ -67,7 +64,7 @@ class WallSet : public LinearScan<WallSet> {
   void grow() {
     // Padding spheres have NaN anchors: the kernel's comparisons fail for them, so no ray
     // meets them (see avx2::first_roots).
-    const std::size_t new_size = ax_.size() + kLanes;
+    const std::size_t new_size = ax_.size() + std::size_t(kBatchWidth);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     for (detail::AlignedArray<float>* column : {&ax_, &ay_, &az_})
       column->resize(new_size, nan);

@@ -16,7 +16,8 @@
 #if defined(GLINT_AVX2)
 namespace glint {
 
-inline constexpr int kLaneCount = 8;
+/// The lanes of a block of paths: those of a RayBatch, so that a path's lane is its ray's.
+inline constexpr int kLaneCount = kBatchWidth;
 
 using FloatLanes = Float<kLaneCount>;
 /// Integers, and the masks comparisons give: -1 (all bits set) where true, 0 where false.
@@ -101,25 +102,26 @@ inline IntLanes lane_indices() {
 /// the order a loop over the lanes would append them.
 inline IntLanes packing_order(std::uint32_t mask) {
   // For each of the 256 masks, the indices of its set bits, one per byte, lowest first.
+  constexpr std::uint32_t kMasks = 1u << kLaneCount;
   static constexpr auto kOrders = [] {
     struct Table {
-      std::uint64_t order[256];
+      std::uint64_t order[kMasks];
     } table{};
-    for (std::uint32_t m = 0; m < 256; ++m) {
+    for (std::uint32_t m = 0; m < kMasks; ++m) {
       int n = 0;
-      for (std::uint32_t lane = 0; lane < 8; ++lane)
+      for (std::uint32_t lane = 0; lane < std::uint32_t(kLaneCount); ++lane)
         if (m >> lane & 1u) table.order[m] |= std::uint64_t(lane) << (8 * n++);
     }
     return table;
   }();
-  const __m128i bytes = _mm_cvtsi64_si128(std::int64_t(kOrders.order[mask & 0xffu]));
+  const __m128i bytes = _mm_cvtsi64_si128(std::int64_t(kOrders.order[mask & (kMasks - 1u)]));
   return std::bit_cast<IntLanes>(_mm256_cvtepu8_epi32(bytes));
 }
 
 /// A packing_order rotated by `at` lanes: the lanes it packs, lowest first, in lanes at, at+1,
 /// ... (mod 8), where a queue of blocks of eight whose last block holds `at` entries continues.
 inline IntLanes rotated_order(IntLanes packing, int at) {
-  return permute(packing, (lane_indices() - at) & 7);
+  return permute(packing, (lane_indices() - at) & (kLaneCount - 1));
 }
 
 /// bits_to_unit_float lane by lane: the top 24 bits as a float in [0, 1), exactly.

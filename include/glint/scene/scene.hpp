@@ -56,6 +56,13 @@ class Scene {
   /// Validates the description (SceneError on any problem, with its line) and builds the
   /// accelerators and the inclusion tree.
   static Scene build(const SceneDescription& description) {
+    return build(description, kLinearSceneSize);
+  }
+
+  /// build, with the spheres of scenes up to `linear_scene_size` spheres (rather than
+  /// kLinearSceneSize) scanned linearly and those of larger ones put in the BVH: for the
+  /// benchmarks and tests that compare the two on one scene.
+  static Scene build(const SceneDescription& description, std::size_t linear_scene_size) {
     validate(description);
     Scene scene;
     scene.source_ = description.source;
@@ -66,7 +73,7 @@ class Scene {
     scene.lights_ = description.lights;
     const InclusionTree tree = build_inclusion_tree(description);
     const float huge_radius = huge_radius_threshold(description);
-    const bool linear = description.spheres.size() <= kLinearSceneSize;
+    const bool linear = description.spheres.size() <= linear_scene_size;
     std::vector<SphereBvh::Input> hierarchy_spheres;
     std::vector<SphereEmitter> emitters;
     scene.surfaces_.reserve(description.spheres.size());
@@ -335,11 +342,12 @@ class Scene {
   }
 
   /// Light buffers for the first kMaxLightBuffers point lights, where the linear set is large
-  /// enough for them to pay (kMinLightBufferSpheres).
+  /// enough for them to pay (kMinLightBufferSpheres) and small enough for a buffer to list.
   void add_light_buffers() {
 #ifdef GLINT_AVX2
     static_assert(kLinearSceneSize <= LightBuffer::kMaxSpheres);
-    if (linear_.size() < kMinLightBufferSpheres) return;
+    if (linear_.size() < kMinLightBufferSpheres || linear_.size() > LightBuffer::kMaxSpheres)
+      return;
     const std::size_t buffered = std::min(lights_.size(), kMaxLightBuffers);
     for (std::size_t i = 0; i < buffered; ++i)
       light_buffers_.emplace_back(lights_[i].position, linear_.columns());
