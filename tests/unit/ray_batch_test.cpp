@@ -242,7 +242,7 @@ void check_coverage(const Tally& tally) {
 
 TEST_CASE("closest_hits and occluded: small scenes, walls and the linear set",
           "[geometry][ray_batch]") {
-  for (const int count : {1, 5, 8, 9, 23, 40, 58}) {
+  for (const int count : {1, 5, 8, 9, 23, 40, 58, int(glint::Scene::kLinearSceneSize)}) {
     for (const bool walls : {false, true}) {
       DYNAMIC_SECTION(count << " spheres" << (walls ? " in a room" : "")) {
         glint::Pcg32 rng(std::uint64_t(count), walls ? 1 : 2);
@@ -289,7 +289,8 @@ TEST_CASE("closest_hits and occluded: huge walls, rays near them", "[geometry][r
 }
 
 TEST_CASE("closest_hits and occluded: large scenes, the BVH", "[geometry][ray_batch]") {
-  for (const int count : {65, 1000, 8000}) {
+  constexpr int kSmallestHierarchy = int(glint::Scene::kLinearSceneSize) + 1;
+  for (const int count : {kSmallestHierarchy, 1000, 8000}) {
     for (const bool walls : {false, true}) {
       DYNAMIC_SECTION(count << " spheres" << (walls ? " in a room" : "")) {
         glint::Pcg32 rng(std::uint64_t(count), walls ? 3 : 4);

@@ -10,8 +10,8 @@
 // (avx2::test_lanes). A cell lists every sphere that the kernel could find a hit on for a ray
 // of that cell, with margins worked out below (see LightBuffer::Margins); a ray that does not
 // end at the light to within those margins (LightBuffer::ends_here) is left to the full scan.
-// Only the spheres of the linear set (small scenes) are listed: a cell is one byte, a bit for
-// each group of kBatchWidth spheres it needs (so up to 64 spheres).
+// Only the spheres of the linear set (small scenes) are listed: a cell is two bytes, a bit for
+// each group of kBatchWidth spheres it needs (so up to 128 spheres).
 
 #include <algorithm>
 #include <bit>
@@ -39,7 +39,7 @@ class LightBuffer {
   /// The spheres that one bit of a cell stands for: those the kernel tests at once.
   static constexpr std::size_t kGroupSize = kBatchWidth;
   /// The groups a cell lists, a bit each.
-  using CellGroups = std::uint8_t;
+  using CellGroups = std::uint16_t;
   /// The most spheres a buffer lists: a group for each bit of a cell.
   static constexpr std::size_t kMaxSpheres =
       std::size_t(std::numeric_limits<CellGroups>::digits) * kGroupSize;

@@ -285,8 +285,9 @@ class Scene {
   static constexpr std::size_t kMaxLightBuffers = 16;
 
   /// Scenes up to this many spheres are scanned linearly: with SIMD, that beats a hierarchy.
-  /// (Their walls, like those of larger scenes, are in the WallSet.)
-  static constexpr std::size_t kLinearSceneSize = 64;
+  /// (Their walls, like those of larger scenes, are in the WallSet.) Closest hits cross over
+  /// between 64 and 80 random spheres (bench/features_bench.cpp, BM_LinearOrBvhRandom).
+  static constexpr std::size_t kLinearSceneSize = 72;
 
  private:
   Scene() = default;
