@@ -40,7 +40,7 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 FloatLanes lanes_of(const float (&values)[kLaneCount]) {
-  return glint::load_lanes(values);
+  return glint::load<FloatLanes>(values);
 }
 
 bool same_bits(float a, float b) {
@@ -53,13 +53,13 @@ TEST_CASE("lane masks and their bits", "[lanes][unit]") {
   const float a_values[kLaneCount] = {1.0f, -2.0f, kNaN, 3.0f, kNaN, -0.0f, 0.0f, kInf};
   const float b_values[kLaneCount] = {2.0f, -3.0f, 1.0f, kNaN, kNaN, 0.0f, -0.0f, -kInf};
   const FloatLanes a = lanes_of(a_values), b = lanes_of(b_values);
-  const IntLanes mask = glint::lanes_of_bits(0b10100101u);
-  CHECK(glint::lane_bits(mask) == 0b10100101u);
+  const IntLanes mask = glint::mask_of_bits<IntLanes>(0b10100101u);
+  CHECK(glint::bits_of_mask(mask) == 0b10100101u);
   const FloatLanes chosen = glint::select(mask, a, b);
   for (int i = 0; i < kLaneCount; ++i)
     CHECK(same_bits(chosen[i], ((0b10100101u >> i) & 1u) ? a_values[i] : b_values[i]));
-  CHECK(glint::lane_bits(a < b) == 0b00000001u);
-  CHECK(glint::lane_bits(a != a) == 0b00010100u);
+  CHECK(glint::bits_of_mask(a < b) == 0b00000001u);
+  CHECK(glint::bits_of_mask(a != a) == 0b00010100u);
 }
 
 TEST_CASE("load_columns turns eight rows of eight floats, anywhere in memory, into columns",

@@ -1,7 +1,7 @@
 #pragma once
 // The eight-lane width of math/wide.hpp as the wavefront renderer's stages use it, lane i being
-// path i of a block, with what AVX2 adds to the width-generic operations: lane masks as bits,
-// transposes, permutations and the packing of lanes into queues. Defined only with GLINT_AVX2
+// path i of a block, with what AVX2 adds to the width-generic operations: transposes,
+// permutations and the packing of lanes into queues. Defined only with GLINT_AVX2
 // (geometry/simd.hpp).
 
 #include <bit>
@@ -23,39 +23,6 @@ using FloatLanes = Float<kLaneCount>;
 /// Integers, and the masks comparisons give: -1 (all bits set) where true, 0 where false.
 using IntLanes = Int<kLaneCount>;
 using UintLanes = UInt<kLaneCount>;
-
-inline FloatLanes broadcast(float value) {
-  return FloatLanes{} + value;
-}
-inline IntLanes broadcast(std::int32_t value) {
-  return IntLanes{} + value;
-}
-
-inline FloatLanes load_lanes(const float* from) {
-  FloatLanes lanes;
-  std::memcpy(&lanes, from, sizeof lanes);
-  return lanes;
-}
-inline IntLanes load_lanes(const std::int32_t* from) {
-  IntLanes lanes;
-  std::memcpy(&lanes, from, sizeof lanes);
-  return lanes;
-}
-inline void store_lanes(float* to, FloatLanes lanes) {
-  std::memcpy(to, &lanes, sizeof lanes);
-}
-inline void store_lanes(std::int32_t* to, IntLanes lanes) {
-  std::memcpy(to, &lanes, sizeof lanes);
-}
-
-/// Bit i set where lane i of `mask` is true.
-inline std::uint32_t lane_bits(IntLanes mask) {
-  return std::uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(__m256i(mask))));
-}
-/// The mask with lane i true where bit i of `bits` is set.
-inline IntLanes lanes_of_bits(std::uint32_t bits) {
-  return std::bit_cast<IntLanes>(avx2::lane_vector(bits));
-}
 
 /// The columns of eight rows of eight floats: column j holds rows[i][j] in lane i. Eight
 /// consecutive fields of eight records in eight loads and 24 shuffles, rather than 64 scalar

@@ -661,8 +661,8 @@ class WavefrontExecution {
     const IntLanes into_next = lane < end - RayBatch::kWidth;
     const auto append = [&](float(RayBatch::*column)[RayBatch::kWidth], FloatLanes value) {
       value = permute(value, order);
-      store_lanes(last.*column, select(into_last, value, load_lanes(last.*column)));
-      if (next) store_lanes(next->*column, select(into_next, value, load_lanes(next->*column)));
+      store(last.*column, select(into_last, value, load<FloatLanes>(last.*column)));
+      if (next) store(next->*column, select(into_next, value, load<FloatLanes>(next->*column)));
     };
     append(&RayBatch::origin_x, rays.origin.x);
     append(&RayBatch::origin_y, rays.origin.y);
@@ -681,9 +681,9 @@ class WavefrontExecution {
     const IntLanes origin_sphere = permute(std::bit_cast<IntLanes>(rays.origin_sphere), order);
     append_ids(last, into_last, origin_sphere);
     if (next) append_ids(*next, into_next, origin_sphere);
-    const LaneMask heads_in = lane_bits(permute(rays.heads_into_origin_sphere, order));
+    const LaneMask heads_in = bits_of_mask(permute(rays.heads_into_origin_sphere, order));
     const auto merge = [&](RayBatch& batch, IntLanes into) {
-      const LaneMask bits = lane_bits(into);
+      const LaneMask bits = bits_of_mask(into);
       batch.heads_into_origin_sphere = (batch.heads_into_origin_sphere & ~bits) | (heads_in & bits);
     };
     merge(last, into_last);
@@ -773,7 +773,7 @@ class WavefrontExecution {
       IntLanes found_sphere, emitter_sphere;
       std::memcpy(&found_sphere, found.sphere, sizeof found_sphere);
       std::memcpy(&emitter_sphere, &state.emitter_sphere[std::size_t(base)], sizeof emitter_sphere);
-      visible = active & lane_bits(found_sphere == emitter_sphere);
+      visible = active & bits_of_mask(found_sphere == emitter_sphere);
 #else
       for_each_lane(active, [&](int lane) {
         if (found.sphere[lane] == state.emitter_sphere[std::size_t(base + lane)])
@@ -800,7 +800,7 @@ class WavefrontExecution {
     for (int base = 0; base < live; base += RayBatch::kWidth) {
       std::uint64_t bits = 0;
 #if defined(GLINT_AVX2)
-      bits = lane_bits(load_lanes(&state.ends[std::size_t(base)]) != 0);
+      bits = bits_of_mask(load<IntLanes>(&state.ends[std::size_t(base)]) != 0);
 #else
       for (int i = 0; i < RayBatch::kWidth; ++i)
         bits |= std::uint64_t(state.ends[std::size_t(base + i)] != 0) << i;
