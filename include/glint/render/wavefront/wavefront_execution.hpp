@@ -8,8 +8,9 @@
 // pbrt-v4's wavefront/ integrator and Mitsuba 3's wavefront mode, on a CPU thread's scale.
 //
 // Each path follows ChainEstimator (render/estimators/chain.hpp), whose step() the shading
-// stage calls for kWidth paths at a time: eight in SIMD lanes where the build has AVX2 and the
-// configuration's policies have lane-wise forms (PoliciesAtWidth), else one. The light rays a
+// stage calls for kWidth paths at a time: a SIMD register's paths (16 with AVX-512, 8 with
+// AVX2) where the configuration's policies have forms for that many lanes (PoliciesAtWidth),
+// else one. The light rays a
 // step asks for are queued and traced in batches, and what they bring is added by
 // ChainEstimator::add_light, as the scalar renderer does for one path: the same operations in
 // the same order at every width, so the wavefront gives the scalar renderer's image bit for
@@ -445,14 +446,15 @@ class WavefrontExecution {
     if constexpr (kWidth <= RayBatch::kWidth)
       return block.heads_into_origin_sphere >> (base % RayBatch::kWidth);
     else
-      return block.heads_into_origin_sphere | (&block + 1)->heads_into_origin_sphere << 8;
+      return block.heads_into_origin_sphere | (&block + 1)->heads_into_origin_sphere
+                                                  << RayBatch::kWidth;
   }
   static void set_heads_into_bits(RayBatch* blocks, int base, LaneMask lanes, LaneMask bits) {
     for (int half = 0; half < std::max(1, kWidth / RayBatch::kWidth); ++half) {
       RayBatch& block = blocks[base / RayBatch::kWidth + half];
       const int shift = kWidth <= RayBatch::kWidth ? base % RayBatch::kWidth : 0;
-      const LaneMask in = ((lanes >> (8 * half)) & RayBatch::kAllLanes) << shift;
-      const LaneMask to = ((bits >> (8 * half)) & RayBatch::kAllLanes) << shift;
+      const LaneMask in = ((lanes >> (RayBatch::kWidth * half)) & RayBatch::kAllLanes) << shift;
+      const LaneMask to = ((bits >> (RayBatch::kWidth * half)) & RayBatch::kAllLanes) << shift;
       block.heads_into_origin_sphere = (block.heads_into_origin_sphere & ~in) | (to & in);
     }
   }
@@ -578,19 +580,20 @@ class WavefrontExecution {
         const LaneMask block_bits = (bits >> at) & RayBatch::kAllLanes;
         if (block_bits == 0) continue;
         visit(at, block_bits,
-              RayLanes<Float<8>>{eight_lanes(rays.origin, at), eight_lanes(rays.direction, at),
-                                 eight_lanes(rays.t_min, at), eight_lanes(rays.t_max, at),
-                                 eight_lanes(rays.origin_sphere, at),
-                                 eight_lanes(rays.heads_into_origin_sphere, at)});
+              RayLanes<Float<RayBatch::kWidth>>{
+                  eight_lanes(rays.origin, at), eight_lanes(rays.direction, at),
+                  eight_lanes(rays.t_min, at), eight_lanes(rays.t_max, at),
+                  eight_lanes(rays.origin_sphere, at),
+                  eight_lanes(rays.heads_into_origin_sphere, at)});
       }
     }
     /// Lanes at .. at + 7 of a value of kWidth (8 or 16) lanes.
     template <typename T>
     static auto eight_lanes(const T& value, int at) {
       if constexpr (std::is_same_v<T, Vec3For<Lanes>>) {
-        return Vector3<Float<8>>{eight_lanes(value.x, at), eight_lanes(value.y, at),
-                                 eight_lanes(value.z, at)};
-      } else if constexpr (kLanesOf<T> == 8) {
+        return Vector3<Float<RayBatch::kWidth>>{eight_lanes(value.x, at), eight_lanes(value.y, at),
+                                                eight_lanes(value.z, at)};
+      } else if constexpr (kLanesOf<T> == RayBatch::kWidth) {
         return value;
       } else {
         return at == 0 ? low_half(value) : high_half(value);
