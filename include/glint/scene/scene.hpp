@@ -319,10 +319,7 @@ class Scene {
 
   // The queries of the walls and the linear set together: in one 8-wide scan where there is
   // AVX2, so that a small scene pays one ray broadcast and one reduction for both. They stay
-  // out of line: inlined into every caller, they changed which of the callers' own
-  // multiply-adds GCC contracts into FMAs, and scenes without walls lost the last bits of
-  // their images in some variants; out of line, such a scene (which takes the linear set's own
-  // queries) renders byte for byte as before walls had a set of their own.
+  // out of line, one copy for the single-ray queries of every caller.
   [[gnu::noinline]] bool closest_linear_hit(const Ray& ray, SphereHit& hit) const {
 #ifdef GLINT_AVX2
     SphereHit best = hit_to_beat(ray, hit);

@@ -44,11 +44,10 @@
 #include "glint/render/tile_grid.hpp"
 #include "glint/scene/scene.hpp"
 
-// Everything the shading and camera stages call is inlined into them. Besides speed, this
-// keeps the scalar renderer's code what it is alone: the sampler's draws, the lobe sampling
-// and the emitter sampling would otherwise have two callers in a program that holds both
-// renderers, GCC would leave them out of line, and the multiply-adds it fuses across those
-// calls would change the last bits of the scalar renderer's images.
+// Everything the shading and camera stages call is inlined into them: the step's material,
+// warps and samplers' draws are short next to a call's cost in registers spilled for 8 or 16
+// lanes, and GCC leaves them out of line by its size limits otherwise. (The images do not
+// depend on it: glint compiles with -ffp-contract=off.)
 #if defined(__GNUC__) && !defined(__clang__)
 #define GLINT_FLATTEN [[gnu::flatten]]
 #else
