@@ -8,9 +8,13 @@
 // declares them extern, so a test that renders with them compiles none of them. A test's own
 // configuration is compiled where the test uses it.
 
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
 #include <string>
 #include <tuple>
 #include <type_traits>
+#include <vector>
 
 #include "glint_renderers.hpp"
 
@@ -64,6 +68,36 @@ template <typename R>
 glint::RenderResult render_by(const glint::Scene& scene, const glint::RenderSettings& settings,
                               const glint::ProgressCallback& progress) {
   return render_by<R>(scene, settings, glint::RenderControl{progress, {}, nullptr});
+}
+
+/// The bench scenes and the report's scenes, sorted by name.
+inline std::vector<std::filesystem::path> comparison_scenes() {
+  std::vector<std::filesystem::path> files;
+  for (const char* dir : {GLINT_SOURCE_DIR "/bench/scenes", GLINT_SOURCE_DIR "/scenes"})
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+      if (entry.is_regular_file() && entry.path().extension() == ".scene")
+        files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+/// Whether two films hold the same pixels bit for bit.
+inline bool same_bits(const glint::Film& a, const glint::Film& b) {
+  return a.width() == b.width() && a.height() == b.height() &&
+         std::memcmp(a.pixels().data(), b.pixels().data(),
+                     a.pixels().size() * sizeof(glint::Color)) == 0;
+}
+
+/// Renders `scene` with the scalar renderer of A and with renderer B, and checks that B gives
+/// the same image bit for bit, with the same numbers of rays and of dropped samples.
+template <typename A, typename B>
+void check_same_image(const glint::Scene& scene, const glint::RenderSettings& settings) {
+  const glint::RenderResult a = render_by<A>(scene, settings);
+  const glint::RenderResult b = render_by<B>(scene, settings);
+  REQUIRE(b.stats.samples == a.stats.samples);
+  CHECK(b.stats.rays == a.stats.rays);
+  CHECK(b.stats.invalid_samples == a.stats.invalid_samples);
+  CHECK(same_bits(b.film, a.film));
 }
 
 /// "fast (wavefront)", for messages.

@@ -4,9 +4,7 @@
 // other than the default are instantiated here for a copy of each variant (an unnamed
 // configuration, so that the named renderers stay compiled once, in glint-renderers).
 
-#include <algorithm>
 #include <catch2/catch.hpp>
-#include <cstring>
 #include <filesystem>
 #include <tuple>
 #include <vector>
@@ -37,12 +35,6 @@ auto at_every_width(std::tuple<V...>*) -> decltype(std::tuple_cat(
     ));
 using Widths = decltype(at_every_width(static_cast<glint_test::ChainVariants*>(nullptr)));
 
-bool same_bits(const glint::Film& a, const glint::Film& b) {
-  return a.width() == b.width() && a.height() == b.height() &&
-         std::memcmp(a.pixels().data(), b.pixels().data(),
-                     a.pixels().size() * sizeof(glint::Color)) == 0;
-}
-
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("at every shading width, the wavefront gives the scalar renderer's image",
@@ -50,12 +42,7 @@ TEMPLATE_LIST_TEST_CASE("at every shading width, the wavefront gives the scalar 
   using V = typename TestType::Variant;
   struct Copy : V {};
   using Wavefront = glint::Renderer<Copy, glint::WavefrontExecution<Copy, TestType::kWidth>>;
-  std::vector<fs::path> files;
-  for (const char* dir : {GLINT_SOURCE_DIR "/bench/scenes", GLINT_SOURCE_DIR "/scenes"})
-    for (const auto& entry : fs::directory_iterator(dir))
-      if (entry.is_regular_file() && entry.path().extension() == ".scene")
-        files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<fs::path> files = glint_test::comparison_scenes();
   REQUIRE(files.size() >= 20);
   for (const fs::path& file : files) {
     const glint::Scene scene = glint::Scene::build(glint::read_scene_file(file.string()));
@@ -67,10 +54,6 @@ TEMPLATE_LIST_TEST_CASE("at every shading width, the wavefront gives the scalar 
     settings.samples_per_pixel = 3;
     settings.seed = 21;
     settings.threads = 3;
-    const glint::RenderResult scalar = glint_test::render_by<glint::Renderer<V>>(scene, settings);
-    const glint::RenderResult wavefront = glint_test::render_by<Wavefront>(scene, settings);
-    CHECK(wavefront.stats.rays == scalar.stats.rays);
-    CHECK(wavefront.stats.invalid_samples == scalar.stats.invalid_samples);
-    CHECK(same_bits(wavefront.film, scalar.film));
+    glint_test::check_same_image<glint::Renderer<V>, Wavefront>(scene, settings);
   }
 }

@@ -8,7 +8,6 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -61,22 +60,8 @@ static_assert(!glint::WavefrontExecution<fast_stratified>::kSamplersInLanes);
 using WavefrontConfigs =
     decltype(std::tuple_cat(ChainVariants{}, std::tuple<fast_path_by_path, fast_stratified>{}));
 
-/// The bench scenes and the report's scenes, sorted by name.
-std::vector<fs::path> comparison_scenes() {
-  std::vector<fs::path> files;
-  for (const char* dir : {GLINT_SOURCE_DIR "/bench/scenes", GLINT_SOURCE_DIR "/scenes"})
-    for (const auto& entry : fs::directory_iterator(dir))
-      if (entry.is_regular_file() && entry.path().extension() == ".scene")
-        files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
-bool same_bits(const glint::Film& a, const glint::Film& b) {
-  return a.width() == b.width() && a.height() == b.height() &&
-         std::memcmp(a.pixels().data(), b.pixels().data(),
-                     a.pixels().size() * sizeof(glint::Color)) == 0;
-}
+using glint_test::comparison_scenes;
+using glint_test::same_bits;
 
 const char* const kMixedScene = R"(
 image      width=16 height=16 spp=16 max_depth=6
@@ -125,12 +110,8 @@ TEMPLATE_LIST_TEST_CASE(
     settings.samples_per_pixel = 4;
     settings.seed = 3;
     settings.threads = 1;
-    const glint::RenderResult scalar =
-        glint_test::render_by<glint::Renderer<TestType>>(scene, settings);
-    const glint::RenderResult wavefront =
-        glint_test::render_by<glint::WavefrontRenderer<TestType>>(scene, settings);
-    CHECK(wavefront.stats.rays == scalar.stats.rays);
-    CHECK(same_bits(wavefront.film, scalar.film));
+    glint_test::check_same_image<glint::Renderer<TestType>, glint::WavefrontRenderer<TestType>>(
+        scene, settings);
   }
   const glint::Scene scene = mixed_scene();
   glint::RenderSettings settings = glint::RenderSettings::from(scene);
@@ -138,14 +119,8 @@ TEMPLATE_LIST_TEST_CASE(
   settings.height = 20;
   settings.seed = 5;
   settings.threads = 2;
-  const glint::RenderResult scalar =
-      glint_test::render_by<glint::Renderer<TestType>>(scene, settings);
-  const glint::RenderResult wavefront =
-      glint_test::render_by<glint::WavefrontRenderer<TestType>>(scene, settings);
-  REQUIRE(wavefront.stats.samples == scalar.stats.samples);
-  CHECK(wavefront.stats.invalid_samples == 0);
-  CHECK(wavefront.stats.rays == scalar.stats.rays);
-  CHECK(same_bits(wavefront.film, scalar.film));
+  glint_test::check_same_image<glint::Renderer<TestType>, glint::WavefrontRenderer<TestType>>(
+      scene, settings);
 }
 
 TEST_CASE("the wavefront image depends neither on tiles nor on passes", "[render][wavefront]") {
