@@ -4,6 +4,7 @@
 // against a brute-force loop over intersect_sphere.
 
 #include <algorithm>
+#include <bit>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
@@ -653,37 +654,37 @@ TEST_CASE("SphereSet, SphereBvh and Scene match a brute-force loop over intersec
   CHECK(scene_tally.origin_sphere_hits > scene_tally.checked / 50);
 }
 
-TEST_CASE("SphereSet: the SIMD kernel agrees with the scalar kernel", "[geometry][sphere_set]") {
+TEST_CASE("SphereSet: the SIMD kernel answers as the scalar kernel, bit for bit",
+          "[geometry][sphere_set]") {
 #ifdef GLINT_AVX2
+  // Both round alike (sphere_kernel.hpp), so that an image does not depend on which kernel, or
+  // which CPU, tested a sphere: the same hit, the same t to the bit, on every ray, the rays
+  // that leave a sphere from its surface included.
   glint::Pcg32 rng(99, 6);
-  int compared = 0, agreed = 0;
+  int compared = 0, hits = 0;
   for (const int count : set_sizes()) {
     for (int set_index = 0; set_index < 3; ++set_index) {
-      const std::vector<TestSphere> spheres = random_spheres(rng, count, false);
+      const std::vector<TestSphere> spheres = random_spheres(rng, count, true);
       const glint::SphereSet set = make_set(spheres);
       for (int r = 0; r < 50; ++r) {
         const glint::Ray ray = random_ray(rng, spheres);
-        const Reference ref = brute_force(spheres, ray, /*apply_origin_rule=*/false);
         glint::SphereHit scalar_hit, simd_hit;
         const bool scalar = set.closest_hit_scalar(ray, scalar_hit);
         const bool simd = set.closest_hit_avx2(ray, simd_hit);
-        INFO(count << " spheres; " << describe(ray, ref) << "; scalar " << scalar << " "
-                   << int(scalar_hit.sphere) << " t=" << scalar_hit.t << ", simd " << simd << " "
-                   << int(simd_hit.sphere) << " t=" << simd_hit.t);
-        CHECK(acceptable_any(ref, set.any_hit_scalar(ray)));
-        CHECK(acceptable_any(ref, set.any_hit_avx2(ray)));
-        CHECK(acceptable(ref, scalar, scalar_hit));
-        CHECK(acceptable(ref, simd, simd_hit));
+        INFO(count << " spheres; scalar " << scalar << " " << int(scalar_hit.sphere)
+                   << " t=" << scalar_hit.t << ", simd " << simd << " " << int(simd_hit.sphere)
+                   << " t=" << simd_hit.t);
+        CHECK(simd == scalar);
+        CHECK(simd_hit.sphere == scalar_hit.sphere);
+        CHECK(std::bit_cast<std::uint32_t>(simd_hit.t) ==
+              std::bit_cast<std::uint32_t>(scalar_hit.t));
+        CHECK(set.any_hit_avx2(ray) == set.any_hit_scalar(ray));
         ++compared;
-        if (scalar != simd || scalar_hit.sphere != simd_hit.sphere) continue;
-        ++agreed;
-        if (scalar)
-          CHECK(std::abs(simd_hit.t - scalar_hit.t) <= tolerance_for(ref, scalar_hit.sphere));
+        hits += scalar ? 1 : 0;
       }
     }
   }
-  // The kernels may disagree only where rounding decides (marginal rays), which is rare.
-  CHECK(agreed >= compared - compared / 200);
+  CHECK(hits > compared / 4);
 #else
   WARN("built without AVX2: only the scalar kernel exists");
   SUCCEED();

@@ -49,11 +49,11 @@ struct SphereQuadratic {
 inline bool sphere_quadratic(const Vec3& origin, const Vec3& direction, const Vec3& center,
                              float radius_squared, SphereQuadratic& q) {
   const Vec3 f = origin - center;
-  const float b = glm::dot(f, direction);
-  const Vec3 perpendicular = f - b * direction;
-  const float discriminant = radius_squared - glm::dot(perpendicular, perpendicular);
+  const float b = fused_dot(f, direction);
+  const Vec3 perpendicular = fused_minus_scaled(f, b, direction);
+  const float discriminant = radius_squared - fused_dot(perpendicular, perpendicular);
   if (!(discriminant >= 0.0f)) return false;
-  q = {b, glm::dot(f, f) - radius_squared, discriminant};
+  q = {b, fused_dot(f, f) - radius_squared, discriminant};
   return true;
 }
 
@@ -115,8 +115,8 @@ inline AnchoredSphere anchor_sphere(const Vec3& center, float radius, const Vec3
 inline float anchored_discriminant(const Vec3& f, const Vec3& direction,
                                    const AnchoredSphere& sphere, float b, float c) {
   if (std::abs(c) <= sphere.radius_squared) return std::fma(b, b, -c);
-  const Vec3 perpendicular = f - b * direction;
-  return sphere.radius_squared - glm::dot(perpendicular, perpendicular);
+  const Vec3 perpendicular = fused_minus_scaled(f, b, direction);
+  return sphere.radius_squared - fused_dot(perpendicular, perpendicular);
 }
 
 /// The quadratic of an anchored sphere (see SphereQuadratic); false, leaving `q` unset, if the
@@ -125,8 +125,8 @@ inline bool anchored_quadratic(const Vec3& origin, const Vec3& direction,
                                const AnchoredSphere& sphere, SphereQuadratic& q) {
   const Vec3 g = origin - sphere.anchor;
   const Vec3 f = g + sphere.offset;
-  const float c = glm::dot(g, f + sphere.offset);
-  const float b = glm::dot(f, direction);
+  const float c = fused_dot(g, f + sphere.offset);
+  const float b = fused_dot(f, direction);
   const float discriminant = anchored_discriminant(f, direction, sphere, b, c);
   if (!(discriminant >= 0.0f)) return false;
   q = {b, c, discriminant};

@@ -5,13 +5,15 @@
 // cross, a ray's origin on one of them is decided by its direction (see below). avx2::closest_hit
 // and avx2::any_hit are the 8-wide form of the same test for the sets' structure-of-arrays
 // storage (SphereColumns for spheres given by their centre, AnchoredColumns for anchored ones,
-// see ray_sphere.hpp): the same formulas with the same tie rule, but their own order of fused
-// operations, so they agree with the scalar form up to rounding, not bit for bit. Their
-// arithmetic is written once over lanes that each pair a ray with a sphere (test_lanes): here
-// one ray against eight spheres, in ray_batch_kernel.hpp eight rays against one sphere, which
-// so gives each ray exactly the t that this scan gives it.
+// see ray_sphere.hpp): the same formulas, the same tie rule and the same operations in the same
+// order, fused where the scalar form uses std::fma (math/vector.hpp's fused_dot), so that both
+// answer bit for bit alike, with or without FMA instructions. Their arithmetic is written once
+// over lanes that each pair a ray with a sphere (test_lanes): here one ray against eight
+// spheres, in ray_batch_kernel.hpp eight rays against one sphere, which so gives each ray
+// exactly the t that this scan gives it.
 
 #include <bit>
+#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
@@ -79,7 +81,7 @@ inline bool origin_on_surface(const Ray& ray, const SphereQuadratic& q, float ra
   const float factor = on_surface_factor(ray);
   if (factor == 0.0f) return false;
   const float tolerance =
-      radius_squared * (factor * extent_squared + factor * glm::dot(ray.origin, ray.origin));
+      radius_squared * std::fma(factor, extent_squared, factor * fused_dot(ray.origin, ray.origin));
   return q.c * q.c < tolerance;
 }
 
@@ -123,7 +125,7 @@ inline bool test_sphere(const Ray& ray, const AnchoredSphere& sphere, std::uint3
   if (!anchored_quadratic(ray.origin, ray.direction, sphere, q)) return false;
   const Vec3 from_anchor = ray.origin - sphere.anchor;
   return take_first_root(
-      ray, q, origin_on_surface(ray, q, sphere.radius_squared, glm::dot(from_anchor, from_anchor)),
+      ray, q, origin_on_surface(ray, q, sphere.radius_squared, fused_dot(from_anchor, from_anchor)),
       id, best);
 }
 
@@ -448,11 +450,10 @@ inline SphereHit first_in_hit_order(const HitLanes& lanes) {
 
 /// The lanes of `group` (bit i for lane i) whose sphere the ray may meet: a superset of those
 /// in which test_sphere finds roots. The discriminant r^2 - |f - (f.d)d|^2 of test_sphere, eight
-/// at once, in its own order of fused operations; each lane's differs from test_sphere's by a
-/// few ulps of |f|^2 + r^2 (f = origin - centre, exact in both; d unit length), and a lane is
-/// culled only when its discriminant is below -2^-12 (|f|^2 + r^2), thousands of times those.
-/// NaN keeps a lane. Most lanes of an incoherent ray's leaf are culled; the few kept cost one
-/// scalar test each.
+/// at once and rounded as test_sphere rounds it; a lane is culled only when it is below
+/// -2^-12 (|f|^2 + r^2), a margin that keeps the cull conservative should the two forms ever
+/// part by a few ulps. NaN keeps a lane. Most lanes of an incoherent ray's leaf are culled; the
+/// few kept cost one scalar test each.
 inline unsigned may_meet(const RayLanes& ray, const SphereGroup& group) {
   const __m256 fx = _mm256_sub_ps(ray.ox, _mm256_load_ps(group.cx));
   const __m256 fy = _mm256_sub_ps(ray.oy, _mm256_load_ps(group.cy));

@@ -3,11 +3,8 @@
 // visited when any live lane's ray enters its box before that lane's best hit, each lane
 // keeping its own bounds. Box tests are those of traverse.hpp with ray and box swapped (one
 // box broadcast, a ray per lane); leaves are tested lane by lane by the caller's function, so
-// that each lane gets the single-ray leaf test's answers. (A ray-parallel leaf kernel could not
-// promise that: the scalar leaf test is C++ whose rounding is the compiler's choice of fused
-// multiply-adds, GCC's -ffp-contract=fast making for instance b = fma(fz, dz, fma(fy, dy,
-// fx dx)), x first where the AVX2 scan starts from z, clang's default fusing none; intrinsics
-// fix one choice.) Like traverse, it visits leaves nearest first (by the nearest entry among
+// that each lane gets the single-ray leaf test's answers. Like traverse, it visits leaves
+// nearest first (by the nearest entry among
 // the lanes) as soon as their node is reached, and skips a subtree that every lane enters
 // beyond its best hit.
 //
