@@ -26,9 +26,11 @@
 
 #include <cstdio>
 #include <cstring>
+
+#include "glint/instruction_set.hpp"
 #endif
 
-namespace glint::cli {
+namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
 /// An instruction set this program was compiled to use, and whether this CPU has it.
 struct InstructionSet {
@@ -150,7 +152,7 @@ GLINT_BASELINE_CODE inline bool missing_instruction_sets_message(const Instructi
 /// Exits with status 1 and the message when this CPU lacks an instruction set the program was
 /// compiled to use.
 GLINT_BASELINE_CODE inline void exit_unless_cpu_supported() {
-  InstructionSet sets[kMaxInstructionSets];
+  InstructionSet sets[kMaxInstructionSets]{};
   const std::size_t count = instruction_sets_used(sets);
   static char message[2048];
   if (!missing_instruction_sets_message(sets, count, program_invocation_short_name, message,
@@ -160,14 +162,18 @@ GLINT_BASELINE_CODE inline void exit_unless_cpu_supported() {
   _exit(1);
 }
 
+#if !defined(GLINT_NO_CPU_CHECK)
 namespace detail {
-// One per program (each includes this header in its one translation unit).
+// One per program (each includes this header in its one translation unit). Not in the
+// translation units of glint-render for the wider instruction sets (GLINT_NO_CPU_CHECK), which
+// run only on a CPU that has them (glint_render.cpp).
 [[gnu::constructor(101), gnu::target("arch=x86-64"), gnu::used]] static void check_cpu_first() {
   exit_unless_cpu_supported();
 }
 }  // namespace detail
+#endif
 
 #undef GLINT_BASELINE_CODE
 #endif  // GLINT_CPU_CHECK
 
-}  // namespace glint::cli
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::cli

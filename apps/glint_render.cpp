@@ -6,9 +6,18 @@
 // options, outputs, signals, checkpoints, scene loading and execution model are
 // render_command.hpp's, shared with glint-render-mpi and compiled once (the glint-cli library);
 // this file only renders the built scene with the variant's renderer (render_variant.hpp).
+//
+// glint-render itself (GLINT_RENDER_SIMD_SETS, apps/CMakeLists.txt) holds this program three
+// times, compiled for x86-64, x86-64-v3 (AVX2) and x86-64-v4 (AVX-512), each in glint's
+// namespace for its instruction set (glint/instruction_set.hpp) and with an entry point named for
+// it, glint_render_<set>. main, in the x86-64 translation unit (GLINT_RENDER_MAIN), reads the
+// options, then hands the run to the entry of the instruction set chosen (--simd, or the widest
+// this CPU runs), which reads them again and renders: a binary that runs on any x86-64 CPU, at
+// its best width.
 
 #include <csignal>
 #include <iostream>
+#include <span>
 #include <string>
 
 #include "progress_printer.hpp"
@@ -18,6 +27,13 @@
 namespace {
 
 using glint::cli::Variant;
+
+#if defined(GLINT_RENDER_SIMD_SETS)
+// The instruction sets whose entries this program holds, and their entries.
+constexpr glint::Simd kSimds[] = {glint::Simd::scalar, glint::Simd::avx2, glint::Simd::avx512};
+#else
+constexpr std::span<const glint::Simd> kSimds = glint::cli::kCompiledSimds;
+#endif
 
 constexpr glint::cli::Program kProgram{
     "glint-render",
@@ -43,17 +59,30 @@ or a CPU without an instruction set this build uses,
 128 + the signal's number when a signal stopped the render (130 for SIGINT).
 )",
     Variant::info.name,
-    glint::cli::kVariantHasWavefront};
+    glint::cli::kVariantHasWavefront,
+    kSimds,
+    glint::cli::kVariantWavefrontLanes};
 
 constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
 }  // namespace
 
-int main(int argc, char** argv) {
+#if defined(GLINT_RENDER_SIMD_SETS)
+// Each defined by this file compiled for its instruction set (GLINT_ISA_LEVEL).
+extern "C" int glint_render_sse2(int argc, char** argv);
+extern "C" int glint_render_avx2(int argc, char** argv);
+extern "C" int glint_render_avx512(int argc, char** argv);
+#endif
+
+namespace {
+
+int run(int argc, char** argv) {
   namespace cli = glint::cli;
   cli::Options options;
+  glint::Simd simd;
   try {
     options = cli::parse_options(argc, argv, kProgram);
+    simd = cli::run_simd(kProgram, options);
   } catch (const cli::UsageError&) {
     const cli::Failure failure = cli::current_failure(kProgram);
     std::cerr << failure.message;
@@ -62,6 +91,21 @@ int main(int argc, char** argv) {
   if (options.help) {
     std::cout << cli::help_text(kProgram);
     return 0;
+  }
+  if (simd != glint::kCompiledSimd) {
+#if defined(GLINT_RENDER_SIMD_SETS)
+    switch (simd) {
+      case glint::Simd::scalar:
+        return glint_render_sse2(argc, argv);
+      case glint::Simd::avx2:
+        return glint_render_avx2(argc, argv);
+      case glint::Simd::avx512:
+        return glint_render_avx512(argc, argv);
+    }
+#endif
+    std::cerr << kProgram.name << ": error: no renderer for --simd " << glint::simd_name(simd)
+              << " in this program\n";
+    return 1;
   }
   cli::install_signal_handlers(kProgram.name, kStopSignals);
   try {
@@ -88,3 +132,17 @@ int main(int argc, char** argv) {
     return failure.status;
   }
 }
+
+}  // namespace
+
+#if defined(GLINT_RENDER_SIMD_SETS)
+extern "C" int GLINT_ISA_CONCAT(glint_render_, GLINT_ISA_LEVEL)(int argc, char** argv) {
+  return run(argc, argv);
+}
+#endif
+
+#if !defined(GLINT_RENDER_SIMD_SETS) || defined(GLINT_RENDER_MAIN)
+int main(int argc, char** argv) {
+  return run(argc, argv);
+}
+#endif

@@ -91,7 +91,9 @@ options, 3 for a valid scene that this variant cannot render (a shading kind it 
 without), 128 + the signal's number when a signal stopped the render (138 for SIGUSR1).
 )",
     Variant::info.name,
-    cli::kVariantHasWavefront};
+    cli::kVariantHasWavefront,
+    cli::kCompiledSimds,
+    cli::kVariantWavefrontLanes};
 
 // SIGUSR1 too: mpirun forwards it as it is, without killing the ranks a second later.
 constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1};

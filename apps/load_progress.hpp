@@ -18,10 +18,11 @@
 #include <string>
 #include <thread>
 
+#include "glint/instruction_set.hpp"
 #include "glint/io/scene_reader.hpp"
 #include "progress_printer.hpp"
 
-namespace glint::cli {
+namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
 enum class LoadStage { reading, parsing, building };
 
@@ -131,4 +132,4 @@ class LoadProgress {
   std::jthread printer_;  // last: it starts once everything it reads is made
 };
 
-}  // namespace glint::cli
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::cli

@@ -10,9 +10,10 @@
 #include <cstdio>
 #include <string>
 
+#include "glint/instruction_set.hpp"
 #include "glint/render/render_settings.hpp"
 
-namespace glint::cli {
+namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
 /// "12.3 s", "4m05s" or "2h07m".
 inline std::string format_seconds(double seconds) {
@@ -61,4 +62,4 @@ class ProgressPrinter {
   int last_decile_ = -1;
 };
 
-}  // namespace glint::cli
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::cli

@@ -28,6 +28,7 @@
 
 #include "glint/config.hpp"
 #include "glint/error.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/io/image_writer.hpp"
 #include "glint/io/scene_reader.hpp"
 #include "glint/render/render_settings.hpp"
@@ -39,7 +40,7 @@
 #include "glint/exr/exr_image.hpp"
 #endif
 
-namespace glint::cli {
+namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
 namespace {
 
@@ -51,6 +52,16 @@ std::string_view to_string(ExecutionModel model) {
 /// "fast, wavefront", "report, scalar".
 std::string renderer_name(const Program& program, ExecutionModel model) {
   return std::string(program.variant) + ", " + std::string(to_string(model));
+}
+
+/// What the summary line says of the code that rendered: "avx512, 16 paths at once", "avx2,
+/// one path at a time".
+std::string simd_description(const Program& program, const Options& options) {
+  const bool wavefront = execution_model(program, options) == ExecutionModel::wavefront;
+  const int lanes = wavefront ? program.wavefront_lanes : 1;
+  return std::string(glint::simd_name(glint::kCompiledSimd)) + ", " +
+         (lanes == 1 ? std::string("one path at a time")
+                     : std::to_string(lanes) + " paths at once");
 }
 
 // --- The options --------------------------------------------------------------------------
@@ -77,6 +88,9 @@ constexpr std::string_view kOptionsBeforeThreads = R"(options:
 constexpr std::string_view kOptionsAfterThreads =
     R"(  --seed N            random seed (default 0): same scene, settings, seed and execution
                       model give the same image bit for bit
+  --simd SET          instruction set to render with: auto (default: the widest this CPU
+                      has), avx512 (16 paths at once), avx2 (8) or scalar (one); the
+                      same image bit for bit with each
   --checkpoint FILE   save what --resume needs to continue the render to FILE: after a
                       pass, every --checkpoint-interval seconds, and at the end (finished,
                       stopped by a signal or by --time-limit); an existing FILE is refused
@@ -154,6 +168,23 @@ glint::ToneMapOperator parse_tone_map(std::string_view option, std::string_view 
                    std::string(text) + "'"};
 }
 
+/// --simd's value: an instruction set, or nullopt for auto.
+std::optional<glint::Simd> parse_simd(std::string_view option, std::string_view text) {
+  if (text == "auto") return std::nullopt;
+  for (const glint::Simd simd : {glint::Simd::scalar, glint::Simd::avx2, glint::Simd::avx512})
+    if (text == glint::simd_name(simd)) return simd;
+  throw UsageError{std::string(option) + " expects auto, avx512, avx2 or scalar, got '" +
+                   std::string(text) + "'"};
+}
+
+/// "scalar, avx2, avx512".
+std::string simd_list(std::span<const glint::Simd> simds) {
+  std::string list;
+  for (const glint::Simd simd : simds)
+    list += (list.empty() ? "" : ", ") + std::string(glint::simd_name(simd));
+  return list;
+}
+
 /// Output formats follow the file name, and only these exist: a picture written under
 /// another name (a PNG called out.jpg) would mislead every program that opens it.
 std::string image_path(std::string_view option, std::string_view path, std::string_view format,
@@ -224,6 +255,8 @@ Options parse_options(int argc, char** argv, [[maybe_unused]] const Program& pro
       options.seed = parse_integer<std::uint64_t>(arg, value(), 0, UINT64_MAX);
     } else if (arg == "--scalar") {
       options.scalar = true;
+    } else if (arg == "--simd") {
+      options.simd = parse_simd(arg, value());
     } else if (arg == "--checkpoint") {
       options.checkpoint = std::string(value());
     } else if (arg == "--checkpoint-interval") {
@@ -247,6 +280,7 @@ Options parse_options(int argc, char** argv, [[maybe_unused]] const Program& pro
   }
   if (options.scene.empty()) throw UsageError{"no scene file given"};
   if (options.exr_half && !options.exr) throw UsageError{"--exr-half needs --exr FILE"};
+  if (options.simd) run_simd(program, options);  // one the program holds and the CPU runs
   // Checked before the scene is read, which can take long: the scene cannot change this.
   if (options.width && options.height &&
       std::int64_t{*options.width} * *options.height > glint::limits::max_image_pixels)
@@ -257,10 +291,66 @@ Options parse_options(int argc, char** argv, [[maybe_unused]] const Program& pro
 }
 
 std::string help_text(const Program& program) {
+  Options automatic;
   return usage(program) + "\nvariant: " + std::string(program.variant) + "\nexecution model: " +
          (program.has_wavefront ? "wavefront (the default), or scalar with --scalar"
                                 : "scalar (this variant's only one)") +
-         "\n";
+         "\ninstruction sets (--simd): " + simd_list(program.simds) +
+         " (auto: " + std::string(glint::simd_name(run_simd(program, automatic))) +
+         " on this CPU)\n";
+}
+
+bool cpu_runs(glint::Simd simd) {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_cpu_init();
+  switch (simd) {
+    case glint::Simd::scalar:
+      return true;
+#if defined(__clang__)
+    // clang 14 knows no psABI levels: the features that set x86-64-v3 and v4 apart that it can
+    // test (the others, LZCNT and MOVBE, came with AVX2 in every such CPU).
+    case glint::Simd::avx2:
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+             __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2") &&
+             __builtin_cpu_supports("f16c");
+    case glint::Simd::avx512:
+      return cpu_runs(glint::Simd::avx2) && __builtin_cpu_supports("avx512f") &&
+             __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+             __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512cd");
+#else
+    case glint::Simd::avx2:
+      return __builtin_cpu_supports("x86-64-v3");
+    case glint::Simd::avx512:
+      return __builtin_cpu_supports("x86-64-v4");
+#endif
+  }
+  return false;
+#else
+  return simd == glint::kCompiledSimd;
+#endif
+}
+
+glint::Simd run_simd(const Program& program, const Options& options) {
+  const auto built = [&](glint::Simd simd) {
+    return std::find(program.simds.begin(), program.simds.end(), simd) != program.simds.end();
+  };
+  if (options.simd) {
+    const std::string name(glint::simd_name(*options.simd));
+    if (!built(*options.simd))
+      throw UsageError{"--simd " + name + ": this program (variant " +
+                       std::string(program.variant) + ") was compiled for " +
+                       simd_list(program.simds) +
+                       " only; glint-render, of the default variant, holds every instruction set"};
+    if (!cpu_runs(*options.simd))
+      throw UsageError{"--simd " + name + ": this CPU lacks the instruction set (" +
+                       (*options.simd == glint::Simd::avx512 ? "x86-64-v4, AVX-512"
+                                                             : "x86-64-v3, AVX2 and FMA") +
+                       ")"};
+    return *options.simd;
+  }
+  for (auto simd = program.simds.rbegin(); simd != program.simds.rend(); ++simd)
+    if (cpu_runs(*simd)) return *simd;
+  return program.simds.front();
 }
 
 // --- Stop signals -------------------------------------------------------------------------
@@ -335,7 +425,9 @@ struct ForgetTemporaries {
 
 }  // namespace
 
-extern "C" void on_stop_signal(int signal) {
+// Internal linkage: glint-render links this file once per instruction set.
+extern "C" {
+static void on_stop_signal(int signal) {
   // Async-signal-safe only: atomics, clock_gettime, unlink, write and _exit.
   timespec now{};
   clock_gettime(CLOCK_MONOTONIC, &now);
@@ -355,6 +447,7 @@ extern "C" void on_stop_signal(int signal) {
   [[maybe_unused]] const ssize_t written =
       write(STDERR_FILENO, second_signal_message, second_signal_message_size);
   _exit(128 + signal);
+}
 }
 
 void install_signal_handlers(const char* program, std::span<const int> signals) {
@@ -616,6 +709,7 @@ std::vector<glint::ExrAttribute> exr_attributes(const Program& program, const Op
           {"glint/version", std::string(GLINT_VERSION)},
           {"glint/variant", std::string(program.variant)},
           {"glint/executionModel", std::string(to_string(model))},
+          {"glint/simd", std::string(glint::simd_name(glint::kCompiledSimd))},
           {"glint/scene", options.scene},
           {"glint/width", settings.width},
           {"glint/height", settings.height},
@@ -678,7 +772,10 @@ int finish_run(const Program& program, const Options& options, const std::string
     std::fprintf(stderr,
                  "%s (%s): %s -> %s: %dx%d, %d spp, depth %d in %.2f s on %s: "
                  "%.3g samples, %.1f Mrays/s\n",
-                 name, renderer_name(program, execution_model(program, options)).c_str(),
+                 name,
+                 (renderer_name(program, execution_model(program, options)) + ", " +
+                  simd_description(program, options))
+                     .c_str(),
                  options.scene.c_str(), output.c_str(), settings.width, settings.height,
                  result.samples_per_pixel, settings.max_depth, stats.seconds,
                  report.workers.c_str(), double(stats.samples),
@@ -740,4 +837,4 @@ Failure current_failure(const Program& program) {
   }
 }
 
-}  // namespace glint::cli
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::cli

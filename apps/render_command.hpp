@@ -22,11 +22,12 @@
 
 #include "glint/image/pixel_sums.hpp"
 #include "glint/image/tone_map.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/io/checkpoint.hpp"
 #include "glint/render/renderer.hpp"
 #include "glint/scene/scene.hpp"
 
-namespace glint::cli {
+namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
 class LoadProgress;
 
@@ -40,6 +41,11 @@ struct Program {
   std::string_view notes;          ///< what follows the options: passes, signals, exit status
   std::string_view variant;        ///< the renderer variant's name
   bool has_wavefront;              ///< the variant has the wavefront renderer (render_variant.hpp)
+  /// The instruction sets the program holds a renderer for (--simd), narrowest first:
+  /// glint-render all three, each compiled in its own translation units; any other program
+  /// the one it was compiled for (glint::kCompiledSimd).
+  std::span<const glint::Simd> simds;
+  int wavefront_lanes;  ///< the paths its wavefront renderer shades at once
 };
 
 // --- The execution model ------------------------------------------------------------------
@@ -63,6 +69,7 @@ struct Options {
   std::optional<int> spp, max_depth, width, height, threads;
   std::uint64_t seed = 0;
   bool scalar = false;  ///< --scalar: Renderer, where the variant also has WavefrontRenderer
+  std::optional<glint::Simd> simd;  ///< --simd, unless auto (the widest this CPU runs)
   std::optional<std::string> checkpoint, resume;
   double checkpoint_interval = 60.0;
   std::optional<double> time_limit;
@@ -77,6 +84,19 @@ ExecutionModel execution_model(const Program& program, const Options& options);
 struct UsageError {
   std::string message;
 };
+
+// --- The instruction set ------------------------------------------------------------------
+// glint-render holds its renderer compiled for x86-64, x86-64-v3 (AVX2) and x86-64-v4
+// (AVX-512), and runs the widest that the CPU has, or the one --simd names. They give the same
+// image bit for bit: each formula is the same IEEE operations in the same order at every width
+// (-ffp-contract=off; explicit fused multiply-adds, by instruction or by the C library).
+
+/// Whether this CPU runs code compiled for `simd` (and the operating system saves its registers).
+bool cpu_runs(glint::Simd simd);
+
+/// The instruction set of the run: --simd's, or the widest of the program's that this CPU runs.
+/// Throws UsageError for one the program was not built with or the CPU lacks.
+glint::Simd run_simd(const Program& program, const Options& options);
 
 /// A program's own option: given the argument and a way to take its value, says whether it
 /// was one (and took it), or throws UsageError.
@@ -201,4 +221,4 @@ struct Failure {
 /// already "FILE:LINE: error: PROBLEM") or any other error.
 Failure current_failure(const Program& program);
 
-}  // namespace glint::cli
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::cli

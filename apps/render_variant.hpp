@@ -6,6 +6,7 @@
 // each), and with it the CPU check (cpu_check.hpp), which runs before main.
 
 #include "cpu_check.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/render/renderer.hpp"
 #include "glint/render/wavefront/wavefront_renderer.hpp"
 #include "glint/variants.hpp"
@@ -18,13 +19,25 @@
 #define GLINT_VARIANT default_variant
 #endif
 
-namespace glint::cli {
+namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
 using Variant = glint::variants::GLINT_VARIANT;
 static_assert(glint::NamedVariant<Variant>, "GLINT_VARIANT must name a variant of variants.hpp");
 
 /// Whether this program's variant has the wavefront renderer (Program::has_wavefront).
 inline constexpr bool kVariantHasWavefront = glint::WavefrontConfig<Variant>;
+
+/// The paths its wavefront renderer shades at once (Program::wavefront_lanes).
+inline constexpr int kVariantWavefrontLanes = [] {
+  if constexpr (glint::WavefrontConfig<Variant>)
+    return glint::default_shading_width<Variant>();
+  else
+    return 1;
+}();
+
+/// The instruction set this translation unit was compiled for, as a program that holds no other
+/// lists it (Program::simds).
+inline constexpr glint::Simd kCompiledSimds[] = {glint::kCompiledSimd};
 
 /// The renderer of variant V for `model`: `render.template operator()<R>()` with R
 /// WavefrontRenderer<V> or Renderer<V>, returning what it returns. A variant without the
@@ -37,4 +50,4 @@ decltype(auto) with_renderer(ExecutionModel model, Render&& render) {
   return render.template operator()<glint::Renderer<V>>();
 }
 
-}  // namespace glint::cli
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::cli

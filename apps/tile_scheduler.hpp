@@ -23,9 +23,10 @@
 #include <optional>
 #include <vector>
 
+#include "glint/instruction_set.hpp"
 #include "glint/render/renderer.hpp"
 
-namespace glint::cli {
+namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
 class TileScheduler {
  public:
@@ -192,4 +193,4 @@ class TileQueue {
   bool asked_ = false;
 };
 
-}  // namespace glint::cli
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::cli

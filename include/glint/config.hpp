@@ -6,6 +6,7 @@
 
 #include <type_traits>
 
+#include "glint/instruction_set.hpp"
 #include "glint/policy/antialiasing.hpp"
 #include "glint/policy/concepts.hpp"
 #include "glint/policy/diffuse_sampling.hpp"
@@ -16,7 +17,7 @@
 #include "glint/policy/sampler.hpp"
 #include "glint/policy/sphere_shading.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// - SamplerPolicy: where sample values come from (independent, stratified, Sobol').
 /// - MaterialModelPolicy: which lobes of the report's material a path follows at a hit (all
@@ -82,4 +83,4 @@ std::false_type derives_from_config(...);
 template <typename C>
 concept RenderConfig = decltype(detail::derives_from_config(std::declval<const C*>()))::value;
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

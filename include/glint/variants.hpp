@@ -15,8 +15,9 @@
 #include <type_traits>
 
 #include "glint/config.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// What a named variant says about itself.
 struct VariantInfo {
@@ -139,4 +140,4 @@ concept NamedVariant = RenderConfig<V> && requires {
   { V::info } -> std::convertible_to<VariantInfo>;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -185,7 +185,8 @@ glint_cli_test(quiet STATUS 0 STDERR "^$" STDOUT "^$" EXPECT_OUTPUT OUTPUT tiny.
 # 160 x 96 pixels (60 tiles), 3 samples each: 46080 samples, printed with %.3g.
 function(glint_cli_progress_test name program variant)
   string(REPLACE ";" "|" joined_args "${ARGN}")
-  set(summary "^glint-render \\(${variant}\\): [^ ]*tiny\\.scene -> out\\.png: 160x96, 3 spp, ")
+  set(summary "^glint-render \\(${variant}, [a-z0-9]+, (one path at a time|[0-9]+ paths at once)\\): ")
+  string(APPEND summary "[^ ]*tiny\\.scene -> out\\.png: 160x96, 3 spp, ")
   string(APPEND summary "depth 2 in [0-9]+\\.[0-9][0-9] s on [12] threads: 4\\.61e\\+04 samples, ")
   string(APPEND summary "[0-9]+\\.[0-9] Mrays/s$")
   add_test(NAME "cli: ${name}" COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:${program}>
@@ -247,6 +248,50 @@ if(GLINT_BASH)
                      $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
                      ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli)
+  endforeach()
+endif()
+
+# The instruction sets (tests/cli/simd_test.bash): the same image bit for bit with every set this
+# CPU runs, thread count and execution model, on a scene of the linear scan (tiny) and one of the
+# BVH (120 random spheres); a set unknown, or that a program does not hold, refused. With QEMU's
+# user-mode emulator (Debian: qemu-user, `scripts/install-deps --qemu`), glint-render also runs
+# on emulated CPUs without AVX-512 (Haswell) and without AVX2 (Nehalem), choosing the widest set
+# they have and giving the same image.
+glint_cli_test(simd-unknown STATUS 2 STDERR "--simd expects auto, avx512, avx2 or scalar, got 'sse'"
+               ARGS ${glint_cli_scenes}/tiny.scene --simd sse)
+if(TARGET glint-render-report)
+  glint_cli_test(simd-not-held PROGRAM glint-render-report STATUS 2
+                 STDERR "--simd scalar: this program \\(variant report\\) was compiled for [a-z0-9]+ only"
+                 ARGS ${glint_cli_scenes}/tiny.scene --simd scalar)
+endif()
+if(GLINT_BASH AND GLINT_SIMD_DISPATCH)
+  set(glint_simd_bvh_scene ${PROJECT_BINARY_DIR}/cli-test/simd-bvh.scene)
+  add_test(NAME "cli: simd-bvh-scene"
+           COMMAND glint-random-scene --count 120 --min-radius 0.5 --max-radius 4 --seed 3
+                   -o ${glint_simd_bvh_scene})
+  set_tests_properties("cli: simd-bvh-scene" PROPERTIES LABELS cli FIXTURES_SETUP simd_bvh_scene)
+  find_program(GLINT_QEMU qemu-x86_64)
+  set(simd_cases same_image)
+  if(GLINT_QEMU)
+    list(APPEND simd_cases emulated_without_avx2 emulated_without_avx512 emulated_lacking_set)
+  else()
+    message(STATUS "glint: qemu-x86_64 not found (Debian: qemu-user): glint-render is not "
+                   "tested on emulated CPUs without AVX2 and AVX-512")
+  endif()
+  foreach(case IN LISTS simd_cases)
+    foreach(scene tiny bvh)
+      if(scene STREQUAL tiny)
+        set(scene_file ${glint_cli_scenes}/tiny.scene)
+      else()
+        set(scene_file ${glint_simd_bvh_scene})
+      endif()
+      string(REPLACE "_" "-" name "simd-${case}-${scene}")
+      add_test(NAME "cli: ${name}"
+               COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/simd_test.bash ${case}
+                       $<TARGET_FILE:glint-render> ${scene_file}
+                       ${PROJECT_BINARY_DIR}/cli-test/${name} ${GLINT_QEMU})
+      set_tests_properties("cli: ${name}" PROPERTIES LABELS cli FIXTURES_REQUIRED simd_bvh_scene)
+    endforeach()
   endforeach()
 endif()
 

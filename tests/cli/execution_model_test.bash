@@ -38,8 +38,8 @@ $2 $3
       }' || fail "$1 is not a complete image of finite values"
 }
 
-summary_names() { # MODEL: the summary line names the variant and MODEL
-  grep -Eq "^glint-render(-[a-z-]+)? \([a-z_]+, $1\): " err.log ||
+summary_names() { # MODEL: the summary line names the variant and MODEL (then the SIMD set)
+  grep -Eq "^glint-render(-[a-z-]+)? \([a-z_]+, $1, [a-z0-9]+, [a-z0-9 ]+\): " err.log ||
     fail "the summary line does not name the $1 renderer"
 }
 

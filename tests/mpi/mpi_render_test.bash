@@ -50,7 +50,7 @@ case_same_bytes() { # RANKS THREADS [OPTION...]: OPTIONs for both programs (--sc
   cmp one.pfm many.pfm || fail "the PFM differs from glint-render's"
   local model="[a-z]+"
   [[ " $* " == *" --scalar "* ]] && model=scalar
-  local summary="^glint-render-mpi \([a-z_]+, $model\): .*lamp-room\.scene -> many\.png: 72x56, 13 spp, depth 8 in [0-9.]+ s on $ranks ranks? x $threads threads: "
+  local summary="^glint-render-mpi \([a-z_]+, $model, [a-z0-9]+, (one path at a time|[0-9]+ paths at once)\): .*lamp-room\.scene -> many\.png: 72x56, 13 spp, depth 8 in [0-9.]+ s on $ranks ranks? x $threads threads: "
   grep -Eq "$summary" err.log || fail "no summary line naming $ranks ranks x $threads threads"
   grep -Eq "^glint-render-mpi: idle: rank 0 [0-9.]+ s \([0-9]+%\)" err.log || fail "no idle line"
   no_temporaries

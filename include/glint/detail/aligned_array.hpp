@@ -7,7 +7,9 @@
 #include <new>
 #include <vector>
 
-namespace glint::detail {
+#include "glint/instruction_set.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE::detail {
 
 template <typename T>
 struct AlignedAllocator {
@@ -26,4 +28,4 @@ struct AlignedAllocator {
 template <typename T>
 using AlignedArray = std::vector<T, AlignedAllocator<T>>;
 
-}  // namespace glint::detail
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::detail

@@ -12,7 +12,9 @@
 #include <thread>
 #include <vector>
 
-namespace glint::detail {
+#include "glint/instruction_set.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE::detail {
 
 /// `work` must not throw (record failures per element and report them afterwards). `cores`:
 /// how many threads at most, the calling one included (0: as many as there are cores).
@@ -40,4 +42,4 @@ void parallel_chunks(std::size_t count, std::size_t chunk, std::size_t cores, co
   run();
 }
 
-}  // namespace glint::detail
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::detail

@@ -7,7 +7,9 @@
 #include <string_view>
 #include <system_error>
 
-namespace glint {
+#include "glint/instruction_set.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 namespace detail {
 
@@ -34,4 +36,4 @@ inline std::string format_number(float value) {
 
 }  // namespace detail
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

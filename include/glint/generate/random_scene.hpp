@@ -29,10 +29,11 @@
 
 #include "glint/detail/text.hpp"
 #include "glint/error.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/scene/scene_description.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 struct RandomSceneParameters {
   float domain_size = 80.0f;  ///< side of the cube [-s/2, s/2]^3 the spheres are placed in
@@ -526,4 +527,4 @@ inline RandomSceneResult generate_random_scene(const RandomSceneParameters& p) {
   return result;
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -9,8 +9,9 @@
 #include <cstdint>
 
 #include "glint/geometry/ray.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 struct SphereHit {
   float t = kInfinity;
@@ -44,4 +45,4 @@ concept SphereAccelerator = requires(const A& a, const Ray& ray, SphereHit& hit)
   { a.size() } -> std::same_as<std::size_t>;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -27,9 +27,10 @@
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_kernel.hpp"
+#include "glint/instruction_set.hpp"
 
 #ifdef GLINT_AVX2
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 class LightBuffer {
  public:
@@ -321,5 +322,5 @@ class LightBuffer {
   std::size_t count_ = 0;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE
 #endif

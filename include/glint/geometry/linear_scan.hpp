@@ -10,8 +10,9 @@
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_kernel.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 template <class Set>
 class LinearScan {
@@ -65,4 +66,4 @@ class LinearScan {
   }
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -4,10 +4,11 @@
 #include <limits>
 #include <type_traits>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/math/wide.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 inline constexpr std::uint32_t kNoSphere = std::numeric_limits<std::uint32_t>::max();
 inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
@@ -86,4 +87,4 @@ RayFor<FloatOf<V3>> rays_leaving_spheres(const V3& point, const V3& direction,
   return {point, direction, splat<F>(0.0f), t_max, sphere, dot(direction, outward_normal) < 0.0f};
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -14,8 +14,9 @@
 #include "glint/geometry/accelerator.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/simd.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Bit i is lane i of a batch.
 using LaneMask = std::uint32_t;
@@ -118,4 +119,4 @@ void for_each_lane(LaneMask mask, Visit&& visit) {
     visit(std::countr_zero(mask));
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

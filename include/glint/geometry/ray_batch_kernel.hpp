@@ -15,9 +15,10 @@
 #include "glint/geometry/ray_batch.hpp"
 #include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_kernel.hpp"
+#include "glint/instruction_set.hpp"
 
 #ifdef GLINT_AVX2
-namespace glint::avx2 {
+namespace glint::inline GLINT_ISA_NAMESPACE::avx2 {
 
 /// The rays of a batch, one per lane.
 inline RayLanes ray_lanes(const RayBatch& rays) {
@@ -82,5 +83,5 @@ inline LaneMask any_hits(const RayLanes& rays, HitLanes bound, LaneMask pending,
   return blocked;
 }
 
-}  // namespace glint::avx2
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::avx2
 #endif

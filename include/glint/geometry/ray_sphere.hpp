@@ -16,9 +16,10 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 struct SphereRoots {
   float near;
@@ -150,4 +151,4 @@ inline float far_side_distance(const Vec3& origin_on_surface, const Vec3& direct
   return 2.0f * glm::dot(center - origin_on_surface, direction);
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

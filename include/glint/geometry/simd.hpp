@@ -1,15 +1,10 @@
 #pragma once
-// The one SIMD switch of glint. Kernels test the macros below, never the compiler's own
-// (__AVX2__, __SSE4_1__, ...), so that defining GLINT_NO_SIMD turns every one of them back to
-// its scalar reference:
-//
-//   GLINT_AVX2    8-wide AVX2 + FMA kernels (SphereSet)
-//   GLINT_SSE41   4-wide SSE4.1 kernels (the BVH's box test)
-//
-// Each is defined when the compiler targets that instruction set (e.g. -march=native) and
-// GLINT_NO_SIMD is not defined.
+// glint's batched geometry: its lane count and the AVX2 helpers its kernels share. The SIMD
+// switches (GLINT_AVX2, GLINT_SSE41, GLINT_NO_SIMD) are glint/instruction_set.hpp's.
 
-namespace glint {
+#include "glint/instruction_set.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// The lanes of glint's batched geometry, whatever the instruction set: the rays of a RayBatch,
 /// the spheres that a linear set's scan and a BVH leaf group test at once, the floats of the
@@ -17,16 +12,7 @@ namespace glint {
 /// count of the geometry derives from it.
 inline constexpr int kBatchWidth = 8;
 
-}  // namespace glint
-
-#if !defined(GLINT_NO_SIMD)
-#if defined(__AVX2__) && defined(__FMA__)
-#define GLINT_AVX2 1
-#endif
-#if defined(__SSE4_1__)
-#define GLINT_SSE41 1
-#endif
-#endif
+}  // namespace glint::inline GLINT_ISA_NAMESPACE
 
 #if defined(GLINT_AVX2) || defined(GLINT_SSE41)
 #include <immintrin.h>
@@ -35,7 +21,7 @@ inline constexpr int kBatchWidth = 8;
 #if defined(GLINT_AVX2)
 #include <cstdint>
 
-namespace glint::avx2 {
+namespace glint::inline GLINT_ISA_NAMESPACE::avx2 {
 
 // The AVX2 kernels hold a batch in a __m256 of floats (or of 32-bit integers), one lane each.
 static_assert(kBatchWidth == 8, "the AVX2 kernels are written for eight lanes");
@@ -47,5 +33,5 @@ inline __m256i lane_vector(std::uint32_t mask) {
                             bits);
 }
 
-}  // namespace glint::avx2
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::avx2
 #endif

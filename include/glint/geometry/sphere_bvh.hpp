@@ -24,8 +24,9 @@
 #include "glint/geometry/ray_batch.hpp"
 #include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_kernel.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 class SphereBvh {
  public:
@@ -254,4 +255,4 @@ class SphereBvh {
 
 static_assert(SphereAccelerator<SphereBvh>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -22,8 +22,9 @@
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_sphere.hpp"
 #include "glint/geometry/simd.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Spheres given by centre and squared radius, addressed by index, as test_spheres reads them.
 template <class S>
@@ -546,4 +547,4 @@ inline bool test_grouped_spheres(const Ray& ray, [[maybe_unused]] const GroupRay
 #endif
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

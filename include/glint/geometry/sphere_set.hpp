@@ -11,8 +11,9 @@
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_kernel.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 class SphereSet : public LinearScan<SphereSet> {
  public:
@@ -62,4 +63,4 @@ class SphereSet : public LinearScan<SphereSet> {
 
 static_assert(SphereAccelerator<SphereSet>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -18,8 +18,9 @@
 #include "glint/geometry/ray_sphere.hpp"
 #include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_kernel.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 class WallSet : public LinearScan<WallSet> {
  public:
@@ -80,4 +81,4 @@ class WallSet : public LinearScan<WallSet> {
 
 static_assert(SphereAccelerator<WallSet>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -10,8 +10,9 @@
 #include <vector>
 
 #include "glint/image/film.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// The error of one image against a reference, over every pixel and channel of the linear
 /// radiance. Values that are NaN or infinite in either image are left out of the sums and
@@ -88,4 +89,4 @@ inline std::vector<float> relative_squared_error(const Film& test, const Film& r
   return errors;
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -10,7 +10,9 @@
 #include <cstdint>
 #include <vector>
 
-namespace glint {
+#include "glint/instruction_set.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 struct Rgb8 {
   std::uint8_t r = 0, g = 0, b = 0;
@@ -69,4 +71,4 @@ inline std::vector<std::uint8_t> false_color_rgb8(const std::vector<float>& valu
   return bytes;
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -14,8 +14,9 @@
 #include <vector>
 
 #include "glint/image/film.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 using ColorSum = glm::dvec3;
 
@@ -76,4 +77,4 @@ inline MeanImage mean_image(const PixelSums& sums, int samples) {
   return image;
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -16,7 +16,9 @@
 #include <system_error>
 #include <utility>
 
-namespace glint {
+#include "glint/instruction_set.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 enum class ToneMapOperator {
   /// Radiance above 1 is shown as 1: the report's images, and glint's default.
@@ -117,4 +119,4 @@ struct ToneMapping {
   float scale() const { return std::exp2(exposure); }
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -35,10 +35,11 @@
 
 #include "glint/error.hpp"
 #include "glint/image/pixel_sums.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/io/input_file.hpp"
 #include "glint/render/render_settings.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// A checkpoint that cannot be read, is damaged, or belongs to another render.
 class CheckpointError : public Error {
@@ -403,4 +404,4 @@ inline void check_checkpoint_matches(const Checkpoint& c, const CheckpointKey& e
          ", this render has " + std::to_string(expected.antialias_sigma));
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -12,10 +12,11 @@
 
 #include "glint/error.hpp"
 #include "glint/image/film.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/io/input_file.hpp"
 #include "glint/scene/image_settings.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// The most bytes a PFM header may take before its pixels: "PF", the width, the height and
 /// the scale with the whitespace between them. A longer one is no PFM glint reads, and the
@@ -121,4 +122,4 @@ inline Film read_pfm(const std::filesystem::path& path) {
   return film;
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -30,8 +30,9 @@
 #include "glint/error.hpp"
 #include "glint/image/film.hpp"
 #include "glint/image/tone_map.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// The sRGB transfer function (IEC 61966-2-1) from linear [0,1] to an 8-bit code value.
 inline std::uint8_t linear_to_srgb8(float linear) {
@@ -307,4 +308,4 @@ inline void write_pfm(const Film& film, const std::filesystem::path& path) {
   write_files({{path, encode_pfm(film)}});
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

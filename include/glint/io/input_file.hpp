@@ -24,8 +24,9 @@
 #include <vector>
 
 #include "glint/error.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// A file opened for reading untrusted content. Every failure, from opening to reading, calls
 /// the reader's `fail` with the problem ("it is a directory", "No such file or directory"):
@@ -136,4 +137,4 @@ class InputFile {
   std::size_t next_ = 0, end_ = 0;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -34,13 +34,14 @@
 #include <vector>
 
 #include "glint/detail/text.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/scene/material.hpp"
 #include "glint/scene/scene_description.hpp"
 #include "glint/scene/scene_error.hpp"
 #include "glint/scene/validate.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Lines longer than this are rejected: no valid statement comes near it, and a binary file
 /// fed by mistake usually trips it (or the NUL check) on its first line.
@@ -615,4 +616,4 @@ inline SceneDescription read_scene_file(const std::filesystem::path& path,
   return read_scene_text(read_scene_file_text(path, progress), path.string(), progress);
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -17,9 +17,10 @@
 #include <system_error>
 
 #include "glint/error.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/scene/scene_description.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// A description that the format cannot express (a number that is not finite).
 class SceneWriteError : public Error {
@@ -187,4 +188,4 @@ inline std::string format_scene(const SceneDescription& scene) {
   return text;
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -6,9 +6,10 @@
 
 #include <cstdint>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// sin(x) and cos(x) for 0 <= x <= 2^16 (the warps' angles are in [0, 2 pi)): the argument is
 /// reduced to [-pi/4, pi/4] around a multiple of pi/2 in three parts (Cody and Waite), then
@@ -65,4 +66,4 @@ inline F log(F x) {
   return m + y + 0.693359375f * e;
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

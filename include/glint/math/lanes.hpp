@@ -10,11 +10,12 @@
 #include <cstring>
 
 #include "glint/geometry/simd.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/math/wide.hpp"
 
 #if defined(GLINT_AVX2)
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// The lanes of a block of paths: those of a RayBatch, so that a path's lane is its ray's.
 inline constexpr int kLaneCount = kBatchWidth;
@@ -100,5 +101,5 @@ using Vec2Lanes = Vector2<FloatLanes>;
 /// Eight 3-vectors, one per lane, in structure-of-arrays form.
 using Vec3Lanes = Vector3<FloatLanes>;
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE
 #endif  // GLINT_AVX2

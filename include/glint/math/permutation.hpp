@@ -6,9 +6,10 @@
 #include <bit>
 #include <cstdint>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/random.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 namespace detail {
 
@@ -57,4 +58,4 @@ constexpr std::uint32_t permute_index(std::uint32_t i, std::uint32_t n, std::uin
 
 }  // namespace detail
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -9,9 +9,10 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// 2^64 divided by the golden ratio: an odd constant whose multiples are spread evenly
 /// modulo 2^64, used to separate the inputs of a hash.
@@ -165,4 +166,4 @@ class Pcg32 {
   std::uint64_t increment_ = 0xda3e39cb94b95bdbULL;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -5,11 +5,12 @@
 // by lane. glint owns these rather than using <random> distributions, whose output differs
 // between standard libraries, and their sin, cos and log are glint's own for the same reason.
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/elementary_functions.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/math/wide.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// An orthonormal basis around a unit normal (Duff et al. 2017, "Building an Orthonormal
 /// Basis, Revisited"): branch-free apart from the sign, no normalisation needed. V is Vec3 or
@@ -97,4 +98,4 @@ inline V2 sample_standard_normal_pair(const V2& u) {
   return V2{radius * cosine, radius * sine};
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -6,9 +6,10 @@
 #include <concepts>
 #include <cstdint>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// A 32-bit word, or W of them in lanes (UInt<W>): the bit operations below are written once
 /// for every width, so the samplers' lane-wise draws are their scalar ones.
@@ -93,4 +94,4 @@ constexpr std::uint32_t owen_scramble(std::uint32_t fraction, std::uint64_t key)
   return detail::reverse_bits(owen_scramble_reversed(detail::reverse_bits(fraction), key));
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -9,7 +9,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-namespace glint {
+#include "glint/instruction_set.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 using Vec2 = glm::vec2;
 using Vec3 = glm::vec3;
@@ -45,4 +47,4 @@ inline float max_component(const Vec3& v) {
   return max_of(v.x, max_of(v.y, v.z));
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

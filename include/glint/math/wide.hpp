@@ -23,13 +23,14 @@
 #include <type_traits>
 #include <utility>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
 
 #if defined(__AVX__) || defined(__AVX512F__)
 #include <immintrin.h>
 #endif
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 namespace detail {
 template <int W>
@@ -421,7 +422,7 @@ inline M mask_of_bits(std::uint32_t bits) {
   }
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE
 
 // ---- 64-bit lanes ----------------------------------------------------------------------------
 // UInt64<W>: W lanes of 64-bit unsigned integers, for the samplers' hashes and generators.
@@ -433,7 +434,7 @@ inline M mask_of_bits(std::uint32_t bits) {
 // memory and copies it through general registers when it is a class member: the samplers' draws
 // then cost half as much again with AVX2.
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 namespace detail {
 
@@ -637,4 +638,4 @@ requires(kLanesOf<M> == W) inline detail::Lanes64<W> select(M mask,
   });
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -2,10 +2,11 @@
 // Antialiasing policies: where within (or around) a pixel a primary ray goes, as an offset in
 // pixels from the pixel centre. Each is written once for every width (math/wide.hpp).
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/sampling.hpp"
 #include "glint/policy/concepts.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Every primary ray through the pixel centre: aliased edges, as in the report's figure 4a.
 struct NoAntialiasing {
@@ -54,4 +55,4 @@ struct TentAntialiasing {
 static_assert(Antialiasing<NoAntialiasing> && Antialiasing<GaussianAntialiasing> &&
               Antialiasing<BoxAntialiasing> && Antialiasing<TentAntialiasing>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -6,11 +6,12 @@
 #include <concepts>
 #include <cstdint>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/scene/material.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Identifies one sample of one pixel, or (W > 1) one in each of W lanes; samplers derive all
 /// their randomness from it, so the image does not depend on which thread renders which pixel.
@@ -129,4 +130,4 @@ concept LightSampling = requires(float pdf, float other_pdf) {
   { L::bounce_weight(pdf, other_pdf) } -> std::same_as<float>;  // a bounce's, on an emitter
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

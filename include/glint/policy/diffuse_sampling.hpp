@@ -2,10 +2,11 @@
 // Diffuse bounce direction policies. Both give unbiased estimates of the same integral; they
 // differ only in variance. Each is written once for every width (math/wide.hpp).
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/sampling.hpp"
 #include "glint/policy/concepts.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// The report's choice: uniform over the hemisphere, weight cos(theta) / (1/2pi).
 struct UniformHemisphere {
@@ -34,4 +35,4 @@ struct CosineHemisphere {
 
 static_assert(DiffuseSampling<UniformHemisphere> && DiffuseSampling<CosineHemisphere>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

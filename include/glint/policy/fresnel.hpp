@@ -4,10 +4,11 @@
 // the renderer reflects when Snell's law has no solution whatever the policy. Each is written
 // once for every width (math/wide.hpp).
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// The report before Fresnel (its figure 5a): fully transparent spheres always refract.
 struct NoFresnel {
@@ -61,4 +62,4 @@ struct SchlickFresnel {
 
 static_assert(Fresnel<NoFresnel> && Fresnel<ExactFresnel> && Fresnel<SchlickFresnel>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

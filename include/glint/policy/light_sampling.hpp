@@ -11,10 +11,11 @@
 
 #include <limits>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// The report's: emissive spheres are found only when a bounce happens to hit them.
 struct PointLightsOnly {
@@ -106,4 +107,4 @@ static_assert(LightSampling<PointLightsOnly> && LightSampling<EmitterSampling<Po
               LightSampling<EmitterSampling<BalanceHeuristic>> &&
               LightSampling<EmitterSamplingOnly>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

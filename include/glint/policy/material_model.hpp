@@ -3,9 +3,10 @@
 // names its estimator, a class template over the Config; the estimators are defined in
 // render/estimators/ (declared here so that the policies do not pull in the renderer).
 
+#include "glint/instruction_set.hpp"
 #include "glint/policy/concepts.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 template <typename C>
 class TreeEstimator;  // render/estimators/tree.hpp
@@ -30,4 +31,4 @@ struct StochasticMaterialModel {
 
 static_assert(MaterialModel<ReportMaterialModel> && MaterialModel<StochasticMaterialModel>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -2,10 +2,11 @@
 // Path termination policies: when a path stops. Each is written once for every width
 // (math/wide.hpp).
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// The report's: every path runs to the maximum depth (or until it escapes).
 struct FixedDepth {
@@ -35,4 +36,4 @@ struct RussianRoulette {
 
 static_assert(PathTermination<FixedDepth> && PathTermination<RussianRoulette>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -3,9 +3,10 @@
 // report did this with a virtual Sphere::color(P); here the set of kinds is closed per build
 // and dispatched with a switch on a one-byte tag stored with the sphere.
 
+#include "glint/instruction_set.hpp"
 #include "glint/policy/concepts.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// One colour per sphere; the cheapest policy, and scenes asking for more are rejected.
 struct UniformShading {
@@ -60,4 +61,4 @@ struct BuiltinShading {
 
 static_assert(SphereShading<UniformShading> && SphereShading<BuiltinShading>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -1,11 +1,12 @@
 #pragma once
 
 #include "glint/geometry/ray.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/math/elementary_functions.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/scene/scene_description.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// A pinhole camera. Film coordinates are in pixels: (0,0) is the top-left corner of the
 /// image, (width, height) the bottom-right one, so pixel (x, y) has its centre at
@@ -57,4 +58,4 @@ class Camera {
   float half_width_ = 0.0f, half_height_ = 0.0f;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -6,12 +6,13 @@
 
 #include "glint/config.hpp"
 #include "glint/geometry/ray.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/render/estimators/chain.hpp"
 #include "glint/render/estimators/path_context.hpp"
 #include "glint/render/estimators/tree.hpp"
 #include "glint/scene/scene.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Estimates the radiance arriving along camera rays, with the policies of Config C, by the
 /// estimator C::material_model names.
@@ -32,4 +33,4 @@ class PathTracer {
   Estimator estimator_;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -9,10 +9,11 @@
 #include <vector>
 
 #include "glint/error.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/scene/image_settings.hpp"
 #include "glint/scene/scene.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// The image settings plus what only a render decides.
 struct RenderSettings : ImageSettings {
@@ -93,4 +94,4 @@ struct RenderStats {
   int threads = 0;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -37,6 +37,7 @@
 #include "glint/error.hpp"
 #include "glint/image/film.hpp"
 #include "glint/image/pixel_sums.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/path_tracer.hpp"
 #include "glint/render/render_settings.hpp"
@@ -45,7 +46,7 @@
 #include "glint/render/work_estimate.hpp"
 #include "glint/scene/scene.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 struct RenderResult {
   /// The mean of the samples of the completed passes; black when no pass completed.
@@ -514,4 +515,4 @@ RenderStats Renderer<C, E>::render_tiles(const Scene& scene, const RenderSetting
   return stats;
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -12,13 +12,14 @@
 
 #include "glint/config.hpp"
 #include "glint/image/pixel_sums.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/path_tracer.hpp"
 #include "glint/render/render_settings.hpp"
 #include "glint/render/tile_grid.hpp"
 #include "glint/scene/scene.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// An execution model. Built once per render from the scene and the settings (both outlive it)
 /// and shared read-only by the threads; each thread owns a ThreadState (its scratch memory,
@@ -124,4 +125,4 @@ Color ScalarExecution<C>::render_pixel(const PathTracer<C>& tracer, const Camera
   return mean_color(sum, samples, out_of_range);
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -14,12 +14,13 @@
 #include <type_traits>
 
 #include "glint/config.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/math/sampling.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/scene/scene.hpp"
 #include "glint/scene/surface_lanes.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// A sample value for the lanes of `mask` (the others get unspecified values): `draws` is a
 /// Sampler at width 1, or a block of W paths' samplers with next_1d(mask) and next_2d(mask).
@@ -318,4 +319,4 @@ class ReportMaterial {
   F total_;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -6,9 +6,10 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "glint/instruction_set.hpp"
 #include "glint/render/render_settings.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Pixels [x0, x1) x [y0, y1).
 struct Tile {
@@ -42,4 +43,4 @@ struct TileGrid {
   std::size_t count;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -13,10 +13,11 @@
 #include "glint/config.hpp"
 #include "glint/detail/text.hpp"
 #include "glint/error.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/render/estimators/tree.hpp"
 #include "glint/scene/scene.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// An upper bound on the rays of one camera sample under the tree model: every hit is assumed
 /// to be on the sphere with the most lobes and to gather every point light (and, when emitters
@@ -89,4 +90,4 @@ void check_work(const Scene& scene, int max_depth) {
   }
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -17,12 +17,13 @@
 #include <optional>
 #include <vector>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/lanes.hpp"
 #include "glint/math/sampling.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/math/wide.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// How a shading point sees an emitter, which decides how directions towards it are drawn.
 enum class EmitterView : std::uint8_t {
@@ -304,4 +305,4 @@ class EmitterTable {
   std::vector<float> probability_;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

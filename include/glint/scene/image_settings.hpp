@@ -7,8 +7,9 @@
 #include <string>
 
 #include "glint/detail/text.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// The report's settings (800x800 pixels, 1000 samples per pixel, 12 bounces, a Gaussian pixel
 /// filter of standard deviation half a pixel): what a scene that sets nothing renders with.
@@ -74,4 +75,4 @@ inline std::string antialias_sigma_problem(float sigma) {
                          detail::format_number(sigma)});
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

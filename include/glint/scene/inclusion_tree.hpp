@@ -25,11 +25,12 @@
 
 #include "glint/detail/parallel_chunks.hpp"
 #include "glint/geometry/sphere_bvh.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/scene/detail/nesting_grid.hpp"
 #include "glint/scene/scene_description.hpp"
 #include "glint/scene/scene_error.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 inline constexpr std::uint32_t kNoParent = 0xffffffffu;
 
@@ -392,4 +393,4 @@ inline InclusionTree build_inclusion_tree(const SceneDescription& scene) {
   return build_inclusion_tree_reference(scene);
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -6,9 +6,10 @@
 #include <cstdint>
 #include <string_view>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// How a sphere's diffuse colour varies over its surface. The set is closed so the renderer can
 /// dispatch on a small tag; a shading policy declares which of these kinds a build supports.
@@ -50,4 +51,4 @@ struct Material {
   bool is_emissive() const { return emission != Color(0.0f); }
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

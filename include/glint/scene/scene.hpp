@@ -24,12 +24,13 @@
 #include "glint/geometry/sphere_bvh.hpp"
 #include "glint/geometry/sphere_set.hpp"
 #include "glint/geometry/wall_set.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/scene/emitters.hpp"
 #include "glint/scene/inclusion_tree.hpp"
 #include "glint/scene/scene_description.hpp"
 #include "glint/scene/validate.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// What shading needs to know of one sphere.
 struct SurfaceProperties {
@@ -427,4 +428,4 @@ class Scene {
   std::vector<int> sphere_lines_;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

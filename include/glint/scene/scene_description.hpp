@@ -7,10 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "glint/instruction_set.hpp"
 #include "glint/scene/image_settings.hpp"
 #include "glint/scene/material.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 struct ImageDescription : ImageSettings {
   int line = 0;
@@ -55,4 +56,4 @@ struct SceneDescription {
   int medium_line = 0;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -6,8 +6,9 @@
 #include <string>
 
 #include "glint/error.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 class SceneError : public Error {
  public:
@@ -43,4 +44,4 @@ class UnsupportedSceneError : public SceneError {
   using SceneError::SceneError;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -6,11 +6,12 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/lanes.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/scene/scene.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// SurfaceProperties lane by lane (lane i: the sphere of hit i).
 template <typename F>
@@ -145,4 +146,4 @@ SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F
   return s;
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

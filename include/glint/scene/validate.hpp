@@ -13,12 +13,13 @@
 #include <glm/vec3.hpp>
 
 #include "glint/detail/text.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/scene/material.hpp"
 #include "glint/scene/scene_description.hpp"
 #include "glint/scene/scene_error.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Limits on geometry, beyond which float arithmetic would no longer render a scene correctly.
 /// A scene stores its numbers as floats (about 7 significant digits); within these limits the
@@ -183,4 +184,4 @@ inline void validate(const SceneDescription& scene) {
     detail::check_sphere(scene, sphere);
 }
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -22,9 +22,10 @@
 
 #include "glint/detail/parallel_chunks.hpp"
 #include "glint/geometry/simd.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
 
-namespace glint::bvh {
+namespace glint::inline GLINT_ISA_NAMESPACE::bvh {
 
 /// A sphere to build the tree over; `id` is what hits report.
 struct SphereInput {
@@ -497,4 +498,4 @@ inline BinaryTree build_binary_tree(std::vector<SphereInput> spheres, std::size_
   return detail::Builder(spheres).build(cores);
 }
 
-}  // namespace glint::bvh
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::bvh

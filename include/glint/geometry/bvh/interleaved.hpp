@@ -24,8 +24,9 @@
 #include "glint/geometry/bvh/wide.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_batch.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint::bvh {
+namespace glint::inline GLINT_ISA_NAMESPACE::bvh {
 
 /// Asks for the cache lines of `object`, to be read soon.
 template <class T>
@@ -133,4 +134,4 @@ inline LaneMask traverse_interleaved(const std::vector<WideNode>& nodes,
   return found;
 }
 
-}  // namespace glint::bvh
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::bvh

@@ -11,8 +11,9 @@
 #include "glint/geometry/bvh/wide.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/sphere_kernel.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint::bvh {
+namespace glint::inline GLINT_ISA_NAMESPACE::bvh {
 
 /// The leaf spheres of `wide` in SphereGroups, in the order of the leaves in `wide` (node by
 /// node, slot by slot); each leaf slot's child becomes the index of its first sphere there (a
@@ -54,4 +55,4 @@ inline std::vector<SphereGroup> group_leaves(std::vector<WideNode>& wide,
   return groups;
 }
 
-}  // namespace glint::bvh
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::bvh

@@ -25,9 +25,10 @@
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_batch.hpp"
 #include "glint/geometry/simd.hpp"
+#include "glint/instruction_set.hpp"
 
 #ifdef GLINT_AVX2
-namespace glint::bvh {
+namespace glint::inline GLINT_ISA_NAMESPACE::bvh {
 
 /// Traverses `nodes` for the lanes of `active`, each starting from the hit in `best` it has to
 /// beat (see hit_to_beat; best[lane].t <= the ray's t_max) and calling `test_leaf` for the
@@ -138,5 +139,5 @@ inline LaneMask traverse_packet(const std::vector<WideNode>& nodes, const RayBat
   return found;
 }
 
-}  // namespace glint::bvh
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::bvh
 #endif

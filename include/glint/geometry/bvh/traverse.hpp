@@ -16,8 +16,9 @@
 #include "glint/geometry/bvh/wide.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/simd.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint::bvh {
+namespace glint::inline GLINT_ISA_NAMESPACE::bvh {
 
 /// Tests spheres [first, first + count) of the tree's leaf spheres against the ray, updating
 /// `best` (see test_spheres); returns whether it did.
@@ -247,4 +248,4 @@ template <bool kAnyHit, LeafTest TestLeaf>
   }
 }
 
-}  // namespace glint::bvh
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::bvh

@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "glint/geometry/bvh/build.hpp"
+#include "glint/instruction_set.hpp"
 
-namespace glint::bvh {
+namespace glint::inline GLINT_ISA_NAMESPACE::bvh {
 
 /// Children per wide node: eight, tested at once by one AVX2 pass (two SSE passes, or a loop,
 /// without it). Fewer levels than a 4-wide tree, so fewer dependent node loads per ray.
@@ -122,4 +123,4 @@ inline std::vector<WideNode> collapse_to_wide(const std::vector<Node>& nodes) {
   return wide;
 }
 
-}  // namespace glint::bvh
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::bvh

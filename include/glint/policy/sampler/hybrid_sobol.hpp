@@ -4,12 +4,13 @@
 #include <bit>
 #include <cstdint>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 #include "glint/policy/sampler/sobol.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Sobol' values for the first kSobolRequests requests of a sample (the camera jitter and the
 /// first bounces, where low discrepancy visibly lowers the error), independent PCG32 values
@@ -91,4 +92,4 @@ class HybridSobolSampler {
 };
 static_assert(Sampler<HybridSobolSampler<>>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

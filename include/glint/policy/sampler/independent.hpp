@@ -1,11 +1,12 @@
 #pragma once
 // The report's sampler: independent values from a hashed PCG32 stream.
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Independent uniform values from a PCG32 stream seeded by hashing (pixel, sample, seed):
 /// the report's sampler, and the baseline for the others.
@@ -45,4 +46,4 @@ class IndependentSampler {
 };
 static_assert(Sampler<IndependentSampler>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -4,11 +4,12 @@
 
 #include <cstdint>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 namespace detail {
 
@@ -31,4 +32,4 @@ constexpr K dimension_key(K pixel_key, D dimension, std::uint32_t salt = 0) {
 
 }  // namespace detail
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -3,13 +3,14 @@
 
 #include <cstdint>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/math/sobol.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 #include "glint/policy/sampler/sample_keys.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Owen-scrambled Sobol' points, padded across dimensions as in Burley 2020 ("Practical
 /// Hash-based Owen Scrambling", JCGT 9(4)). Every request draws from the first two dimensions
@@ -100,4 +101,4 @@ class SobolSampler {
 };
 static_assert(Sampler<SobolSampler>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -5,12 +5,13 @@
 #include <cmath>
 #include <cstdint>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/permutation.hpp"
 #include "glint/math/random.hpp"
 #include "glint/policy/concepts.hpp"
 #include "glint/policy/sampler/sample_keys.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 namespace detail {
 
@@ -108,4 +109,4 @@ class StratifiedSampler {
 };
 static_assert(Sampler<StratifiedSampler>);
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

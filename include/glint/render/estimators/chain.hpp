@@ -6,11 +6,12 @@
 
 #include "glint/config.hpp"
 #include "glint/geometry/ray.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/render/estimators/path_context.hpp"
 #include "glint/render/scattering.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// A Float's lanes of paths between two bounces (lane i: path i).
 template <typename F>
@@ -147,4 +148,4 @@ class ChainEstimator {
   PathContext<C> context_;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

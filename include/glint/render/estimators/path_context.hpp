@@ -14,11 +14,12 @@
 
 #include "glint/config.hpp"
 #include "glint/geometry/ray.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/render/scattering.hpp"
 #include "glint/scene/scene.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Per-thread tallies; plain integers, summed once at the end of a render.
 struct TraceCounters {
@@ -228,4 +229,4 @@ class TracedLight {
   Color emitter_light_{0.0f};
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -4,10 +4,11 @@
 #include <optional>
 
 #include "glint/config.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/render/estimators/path_context.hpp"
 #include "glint/render/scattering.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Follows every lobe with a non-zero coefficient, weighted by it: a diffuse hit gathers the
 /// point lights directly and bounces once, and mirror and refraction rays are all traced, so a
@@ -85,4 +86,4 @@ class TreeEstimator {
   PathContext<C> context_;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

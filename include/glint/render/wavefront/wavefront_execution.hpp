@@ -34,6 +34,7 @@
 #include "glint/detail/aligned_array.hpp"
 #include "glint/geometry/ray_batch.hpp"
 #include "glint/image/pixel_sums.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/math/lanes.hpp"
 #include "glint/math/sampling.hpp"
 #include "glint/render/camera.hpp"
@@ -58,7 +59,7 @@
 // nothing, and a profile (perf report) then gives every stage's share of the time by name.
 #define GLINT_STAGE [[gnu::noinline]]
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Whether variant C can be rendered by WavefrontRenderer: it follows one lobe per bounce, so a
 /// sample is one path. (The report's tree model follows every lobe: a sample is a tree of rays.)
@@ -875,7 +876,7 @@ class WavefrontExecution {
   RenderSettings settings_;
 };
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE
 
 #undef GLINT_FLATTEN
 #undef GLINT_STAGE

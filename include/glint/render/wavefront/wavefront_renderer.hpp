@@ -5,12 +5,13 @@
 // configurations only (WavefrontConfig).
 
 #include "glint/config.hpp"
+#include "glint/instruction_set.hpp"
 #include "glint/render/renderer.hpp"
 #include "glint/render/wavefront/wavefront_execution.hpp"
 
-namespace glint {
+namespace glint::inline GLINT_ISA_NAMESPACE {
 
 template <RenderConfig C>
 using WavefrontRenderer = Renderer<C, WavefrontExecution<C>>;
 
-}  // namespace glint
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

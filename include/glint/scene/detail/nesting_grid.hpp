@@ -25,9 +25,10 @@
 #include <utility>
 #include <vector>
 
+#include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
 
-namespace glint::detail {
+namespace glint::inline GLINT_ISA_NAMESPACE::detail {
 
 /// A cell of one level of the grid.
 struct NestingCellKey {
@@ -251,4 +252,4 @@ class NestingGrid {
   std::vector<Chain> chains_;
 };
 
-}  // namespace glint::detail
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::detail
