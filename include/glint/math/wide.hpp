@@ -184,6 +184,15 @@ inline T select(bool mask, T if_true, T if_false) {
 }
 template <WideNumber M, WideNumber T>
 requires(kLanesOf<M> == kLanesOf<T>) inline T select(M mask, T if_true, T if_false) {
+#if defined(__AVX__) && !defined(__AVX512VL__)
+  // One blend by the masks' sign bits (all ones or all zeros), where AVX-512 does not make the
+  // three-operation form one instruction (vpternlogd).
+  if constexpr (kLanesOf<T> == 8) {
+    return std::bit_cast<T>(_mm256_blendv_ps(std::bit_cast<__m256>(if_false),
+                                             std::bit_cast<__m256>(if_true),
+                                             std::bit_cast<__m256>(mask)));
+  }
+#endif
   if constexpr (std::is_same_v<T, M>) {
     return (if_true & mask) | (if_false & ~mask);
   } else {
