@@ -6,7 +6,10 @@
 //
 // Names: render/SCENE/VARIANT/MODEL, MODEL `scalar` (Renderer) for every variant and, next to it
 // in the same run, `wavefront` (WavefrontRenderer) for each chain variant (WavefrontConfig), so
-// that bench/run-all pairs them by name.
+// that bench/run-all pairs them by name; for the default variant also `wavefront-wW`, the
+// wavefront renderer shading W paths at once for each width this build's CPU target has
+// (1, 8 with AVX2, 16 with AVX-512: glint-render's --simd scalar, avx2 and avx512 do the same
+// arithmetic), for bench/run-all's table of shading widths.
 //
 //   glint-variants-bench [--scenes=DIR] --benchmark_out=variants.json --benchmark_out_format=json
 //
@@ -28,6 +31,7 @@
 #include <string>
 #include <string_view>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -88,6 +92,20 @@ void register_render(const std::string& name, const glint::Scene* scene) {
       ->Unit(benchmark::kMillisecond);
 }
 
+/// Registers PREFIX wavefront-wW for each shading width W up to the default one.
+template <glint::NamedVariant V>
+void register_widths(const std::string& prefix, const glint::Scene* scene) {
+  constexpr int kDefaultWidth = glint::default_shading_width<V>();
+  const auto at_width = [&]<int W>() {
+    if constexpr (W <= kDefaultWidth)
+      register_render<glint::Renderer<V, glint::WavefrontExecution<V, W>>>(
+          prefix + "wavefront-w" + std::to_string(W), scene);
+  };
+  at_width.template operator()<1>();
+  at_width.template operator()<8>();
+  at_width.template operator()<16>();
+}
+
 template <glint::NamedVariant V>
 void register_variant(const std::deque<NamedScene>& scenes) {
   const std::string name(V::info.name);
@@ -101,8 +119,11 @@ void register_variant(const std::deque<NamedScene>& scenes) {
     }
     const std::string prefix = "render/" + s.name + "/" + name + "/";
     register_render<glint::Renderer<V>>(prefix + "scalar", &s.scene);
-    if constexpr (glint::WavefrontConfig<V>)
+    if constexpr (glint::WavefrontConfig<V>) {
       register_render<glint::WavefrontRenderer<V>>(prefix + "wavefront", &s.scene);
+      if constexpr (std::is_same_v<V, glint::variants::default_variant>)
+        register_widths<V>(prefix, &s.scene);
+    }
   }
 }
 
