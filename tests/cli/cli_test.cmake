@@ -265,7 +265,7 @@ if(TARGET glint-render-report)
                  ARGS ${glint_cli_scenes}/tiny.scene --simd scalar)
 endif()
 if(GLINT_BASH AND GLINT_SIMD_DISPATCH)
-  set(glint_simd_bvh_scene ${PROJECT_BINARY_DIR}/cli-test/simd-bvh.scene)
+  set(glint_simd_bvh_scene ${PROJECT_BINARY_DIR}/simd-bvh.scene)
   add_test(NAME "cli: simd-bvh-scene"
            COMMAND glint-random-scene --count 120 --min-radius 0.5 --max-radius 4 --seed 3
                    -o ${glint_simd_bvh_scene})
