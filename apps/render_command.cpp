@@ -308,11 +308,10 @@ bool cpu_runs(glint::Simd simd) {
       return true;
 #if defined(__clang__)
     // clang 14 knows no psABI levels: the features that set x86-64-v3 and v4 apart that it can
-    // test (the others, LZCNT and MOVBE, came with AVX2 in every such CPU).
+    // test (the others, F16C, LZCNT and MOVBE, came with AVX2 in every such CPU).
     case glint::Simd::avx2:
       return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-             __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2") &&
-             __builtin_cpu_supports("f16c");
+             __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
     case glint::Simd::avx512:
       return cpu_runs(glint::Simd::avx2) && __builtin_cpu_supports("avx512f") &&
              __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
