@@ -10,15 +10,10 @@
 # Each runs in the empty directory SCRATCH in a second or so. Exit status 0 on success, 1 on a
 # failure, with the reason on stderr.
 set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/../support/bash_case.bash"
 case_name=$1 program=$2 scene=$3 scratch=$4 other_program=$5
 
-fail() {
-  echo "FAIL ($case_name): $*" >&2
-  [[ -f err.log ]] && { echo "--- stderr of the last run:" >&2; cat err.log >&2; }
-  exit 1
-}
-
-rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch" || exit 1
+enter_scratch "$scratch"
 
 # The mean of a PFM's values, after checking that it is WIDTH x HEIGHT RGB and every value is
 # finite.
@@ -115,5 +110,4 @@ case_scalar_changes_nothing() {
   cmp plain.pfm scalar.pfm || fail "--scalar changed the image"
 }
 
-declare -F "case_$case_name" >/dev/null || { echo "no case '$case_name'" >&2; exit 2; }
-"case_$case_name"
+run_case "$case_name"

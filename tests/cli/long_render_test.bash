@@ -10,15 +10,10 @@
 # that it is still running then by a wide margin. Exit status 0 on success, 77 when the case
 # cannot run here (ctest's SKIP_RETURN_CODE), 1 on a failure, with the reason on stderr.
 set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/../support/bash_case.bash"
 case_name=$1 program=$2 scene=$3 scratch=$4 other_program=${5:-}
 
-fail() {
-  echo "FAIL ($case_name): $*" >&2
-  [[ -f err.log ]] && { echo "--- stderr of glint-render:" >&2; cat err.log >&2; }
-  exit 1
-}
-
-rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch" || exit 1
+enter_scratch "$scratch"
 
 # No temporary of any name is left behind.
 no_temporaries() {
@@ -509,6 +504,5 @@ case_huge_values() {
   no_temporaries
 }
 
-declare -F "case_$case_name" >/dev/null || { echo "no case '$case_name'" >&2; exit 2; }
-"case_$case_name"
+run_case "$case_name"
 echo "ok: $case_name"

@@ -11,15 +11,10 @@
 # for the emulated cases. Runs in the empty directory SCRATCH. Exit status 0 on success, 1 on a
 # failure, with the reason on stderr.
 set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/../support/bash_case.bash"
 case_name=$1 program=$2 scene=$3 scratch=$4 qemu=${5:-}
 
-fail() {
-  echo "FAIL ($case_name): $*" >&2
-  [[ -f err.log ]] && { echo "--- stderr of the last run:" >&2; cat err.log >&2; }
-  exit 1
-}
-
-rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch" || exit 1
+enter_scratch "$scratch"
 
 # Renders SCENE to NAME.pfm with the given options (and the launcher of $launcher, if any);
 # fails unless it succeeds and the summary line names SET.
@@ -84,6 +79,5 @@ case_emulated_lacking_set() {
   [[ ! -e out.png ]] || fail "an image was written"
 }
 
-declare -F "case_$case_name" >/dev/null || fail "no such case"
-"case_$case_name"
+run_case "$case_name"
 echo "ok ($case_name)"

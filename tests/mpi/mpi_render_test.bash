@@ -9,16 +9,11 @@
 # OMPI_ALLOW_RUN_AS_ROOT_CONFIRM. Ranks may outnumber the cores (--oversubscribe). Exit status
 # 0 on success, 1 on a failure, with the reason on stderr.
 set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/../support/bash_case.bash"
 case_name=$1 mpiexec=$2 mpi_program=$3 program=$4 source_dir=$5 scratch=$6
 shift 6
 
-fail() {
-  echo "FAIL ($case_name): $*" >&2
-  [[ -f err.log ]] && { echo "--- stderr:" >&2; cat err.log >&2; }
-  exit 1
-}
-
-rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch" || exit 1
+enter_scratch "$scratch"
 
 # Each rank may run anywhere (not bound to one core), as a rank with several threads needs.
 mpirun_n() { # RANKS ARGS...
@@ -204,6 +199,5 @@ case_stopped() { # SIGNAL STATUS
   cmp out.png full.png && cmp out.pfm full.pfm || fail "the resumed image differs"
 }
 
-declare -F "case_$case_name" >/dev/null || { echo "no case '$case_name'" >&2; exit 2; }
-"case_$case_name" "$@"
+run_case "$case_name" "$@"
 echo "ok: $case_name $*"
