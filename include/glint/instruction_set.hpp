@@ -20,6 +20,7 @@
 // GLINT_NO_SIMD turns every one of them back to its scalar reference:
 //
 //   GLINT_AVX2    8-wide AVX2 + FMA kernels (SphereSet, WallSet, the BVH's nodes, ...)
+//   GLINT_AVX512  16-wide AVX-512 forms of the batched ray queries (x86-64-v4: F, VL, BW, DQ)
 //   GLINT_SSE41   4-wide SSE4.1 kernels (the BVH's box test)
 //
 // Each is defined when the compiler targets that instruction set (e.g. -march=native) and
@@ -34,6 +35,10 @@
 #endif
 #if defined(__SSE4_1__)
 #define GLINT_SSE41 1
+#endif
+#if defined(GLINT_AVX2) && defined(__AVX512F__) && defined(__AVX512VL__) && \
+    defined(__AVX512BW__) && defined(__AVX512DQ__)
+#define GLINT_AVX512 1
 #endif
 #endif
 

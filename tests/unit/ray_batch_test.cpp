@@ -1,6 +1,7 @@
-// The batched queries (Scene::closest_hits and occluded for eight rays) must answer exactly
-// what the single-ray queries answer lane by lane: the same t to the bit, the same sphere, the
-// same occlusion verdict, and leave the lanes they were not asked about alone. Small scenes
+// The batched queries (Scene::closest_hits and occluded for eight rays, and for the sixteen of
+// two batches) must answer exactly what the single-ray queries answer lane by lane: the same t
+// to the bit, the same sphere, the same occlusion verdict, and leave the lanes they were not
+// asked about alone. Small scenes
 // (walls and the linear set, the ray-parallel kernel) and large ones (the BVH, packet and per
 // lane), with random, grazing, surface-leaving and bounded rays, huge walls, nested spheres and
 // ties between duplicates.
@@ -10,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -160,6 +162,46 @@ struct Tally {
   int lanes = 0, hits = 0, blocked = 0, batches = 0;
 };
 
+/// Checks the queries for two batches (sixteen lanes at once with AVX-512) against those for
+/// one, whose answers for `batch` were `hits`, `found` and `blocked`: `batch` as the first
+/// batch of the pair and again, its lanes reversed (each ray in another lane), as the second.
+void check_pair(const glint::Scene& scene, const RayBatch& batch, LaneMask active,
+                const glint::HitBatch& hits, LaneMask found, LaneMask blocked,
+                glint::RayCoherence coherence) {
+  RayBatch pair[2] = {batch, RayBatch{}};
+  LaneMask pair_active = active;
+  for (int lane = 0; lane < kWidth; ++lane) {
+    pair[1].set(kWidth - 1 - lane, batch.get(lane));
+    pair_active |= ((active >> lane) & 1u) << (2 * kWidth - 1 - lane);
+  }
+  glint::HitBatch pair_hits[2];
+  for (int lane = 0; lane < 2 * kWidth; ++lane)
+    pair_hits[lane / kWidth].set(lane % kWidth,
+                                 {-7.0f - float(lane), 0xbeef0000u + std::uint32_t(lane)});
+  const LaneMask pair_found =
+      scene.closest_hits(std::span<const RayBatch, 2>(pair), pair_active,
+                         std::span<glint::HitBatch, 2>(pair_hits), coherence);
+  const LaneMask pair_blocked =
+      scene.occluded(std::span<const RayBatch, 2>(pair), pair_active, coherence);
+  CHECK((pair_found & ~pair_active) == 0);
+  CHECK((pair_blocked & ~pair_active) == 0);
+  for (int lane = 0; lane < 2 * kWidth; ++lane) {
+    const glint::HitBatch& got = pair_hits[lane / kWidth];
+    const int at = lane % kWidth;
+    const int from = lane < kWidth ? lane : 2 * kWidth - 1 - lane;  // the lane of `batch`
+    INFO("lane " << lane << " of two batches, lane " << from << " of one");
+    if (!((pair_active >> lane) & 1u)) {
+      CHECK(bits_of(got.t[at]) == bits_of(-7.0f - float(lane)));
+      CHECK(got.sphere[at] == 0xbeef0000u + std::uint32_t(lane));
+      continue;
+    }
+    CHECK(((pair_found >> lane) & 1u) == ((found >> from) & 1u));
+    CHECK(bits_of(got.t[at]) == bits_of(hits.t[from]));
+    CHECK(got.sphere[at] == hits.sphere[from]);
+    CHECK(((pair_blocked >> lane) & 1u) == ((blocked >> from) & 1u));
+  }
+}
+
 /// Checks closest_hits and occluded against the single-ray queries for one batch, with the
 /// lanes of `active` set and the others holding `junk`.
 void check_batch(const glint::Scene& scene, const Ray (&rays)[kWidth], LaneMask active,
@@ -201,6 +243,7 @@ void check_batch(const glint::Scene& scene, const Ray (&rays)[kWidth], LaneMask 
     tally.hits += expected ? 1 : 0;
     tally.blocked += (blocked >> lane) & 1u;
   }
+  check_pair(scene, batch, active, hits, found, blocked, coherence);
 }
 
 /// Random and coherent batches, all lanes active and random subsets, against `scene`.

@@ -8,9 +8,10 @@
 // see ray_sphere.hpp): the same formulas, the same tie rule and the same operations in the same
 // order, fused where the scalar form uses std::fma (math/vector.hpp's fused_dot), so that both
 // answer bit for bit alike, with or without FMA instructions. Their arithmetic is written once
-// over lanes that each pair a ray with a sphere (test_lanes): here one ray against eight
-// spheres, in ray_batch_kernel.hpp eight rays against one sphere, which so gives each ray
-// exactly the t that this scan gives it.
+// over lanes that each pair a ray with a sphere (test_lanes), in the registers of Lanes8 or
+// Lanes16 (simd.hpp): here one ray against eight spheres, in ray_batch_kernel.hpp eight or
+// sixteen rays against one sphere, which so gives each ray exactly the t that this scan gives
+// it.
 
 #include <bit>
 #include <cmath>
@@ -214,23 +215,25 @@ struct AnchoredColumns {
   std::size_t size;  ///< without the padding
 };
 
-/// A ray in every lane.
-struct RayLanes {
-  __m256 ox, oy, oz, dx, dy, dz, t_min;
-  __m256i origin_sphere;
+/// A ray in every lane, in registers of L (geometry/simd.hpp).
+template <class L>
+struct BasicRayLanes {
+  using F = typename L::F;
+  using I = typename L::I;
+  F ox, oy, oz, dx, dy, dz, t_min;
+  I origin_sphere;
   /// The on-surface test's factor (on_surface_factor) and that factor times |origin|^2.
-  __m256 on_surface_factor, on_surface_origin;
+  F on_surface_factor, on_surface_origin;
   bool any_on_surface_test;  ///< whether some lane's factor is not 0
 
-  explicit RayLanes(const Ray& ray)
-      : RayLanes(_mm256_set1_ps(ray.origin.x), _mm256_set1_ps(ray.origin.y),
-                 _mm256_set1_ps(ray.origin.z), _mm256_set1_ps(ray.direction.x),
-                 _mm256_set1_ps(ray.direction.y), _mm256_set1_ps(ray.direction.z),
-                 _mm256_set1_ps(ray.t_min),
-                 _mm256_set1_epi32(static_cast<int>(ray.origin_sphere))) {}
+  explicit BasicRayLanes(const Ray& ray)
+      : BasicRayLanes(L::splat(ray.origin.x), L::splat(ray.origin.y), L::splat(ray.origin.z),
+                      L::splat(ray.direction.x), L::splat(ray.direction.y),
+                      L::splat(ray.direction.z), L::splat(ray.t_min),
+                      L::splat(static_cast<std::int32_t>(ray.origin_sphere))) {}
   /// A ray per lane (see ray_batch_kernel.hpp).
-  RayLanes(__m256 ox_lanes, __m256 oy_lanes, __m256 oz_lanes, __m256 dx_lanes, __m256 dy_lanes,
-           __m256 dz_lanes, __m256 t_min_lanes, __m256i origin_sphere_lanes)
+  BasicRayLanes(F ox_lanes, F oy_lanes, F oz_lanes, F dx_lanes, F dy_lanes, F dz_lanes,
+                F t_min_lanes, I origin_sphere_lanes)
       : ox(ox_lanes),
         oy(oy_lanes),
         oz(oz_lanes),
@@ -241,37 +244,42 @@ struct RayLanes {
         origin_sphere(origin_sphere_lanes) {
     // on_surface_factor, lane by lane, from the same lanes whether broadcast or not, so that a
     // ray gets the same verdicts in both kernels.
-    const __m256 leaves_sphere =
-        _mm256_andnot_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(
-                             origin_sphere, _mm256_set1_epi32(static_cast<int>(kNoSphere)))),
-                         _mm256_cmp_ps(t_min, _mm256_setzero_ps(), _CMP_LE_OQ));
-    on_surface_factor = _mm256_and_ps(leaves_sphere, _mm256_set1_ps(kOnSurfaceFactor));
-    on_surface_origin = _mm256_mul_ps(
-        on_surface_factor, _mm256_fmadd_ps(ox, ox, _mm256_fmadd_ps(oy, oy, _mm256_mul_ps(oz, oz))));
-    any_on_surface_test = _mm256_movemask_ps(leaves_sphere) != 0;
+    const typename L::M leaves_sphere =
+        L::and_not(L::less_equal(t_min, L::zero()),
+                   L::equal(origin_sphere, L::splat(static_cast<std::int32_t>(kNoSphere))));
+    on_surface_factor = L::keep(leaves_sphere, L::splat(kOnSurfaceFactor));
+    on_surface_origin =
+        L::mul(on_surface_factor, L::fmadd(ox, ox, L::fmadd(oy, oy, L::mul(oz, oz))));
+    any_on_surface_test = L::bits(leaves_sphere) != 0;
   }
 };
+using RayLanes = BasicRayLanes<Lanes8>;
 
 /// A sphere given by its centre in each lane: eight of a SphereColumns (load_lanes), or one
 /// broadcast (broadcast_lanes).
-struct SphereLanes {
-  __m256 cx, cy, cz, r2;
+template <class L>
+struct BasicSphereLanes {
+  typename L::F cx, cy, cz, r2;
 };
+using SphereLanes = BasicSphereLanes<Lanes8>;
 
 inline SphereLanes load_lanes(const SphereColumns& spheres, std::size_t base) {
   return {_mm256_load_ps(spheres.cx + base), _mm256_load_ps(spheres.cy + base),
           _mm256_load_ps(spheres.cz + base), _mm256_load_ps(spheres.r2 + base)};
 }
 
-inline SphereLanes broadcast_lanes(const SphereColumns& spheres, std::size_t i) {
-  return {_mm256_set1_ps(spheres.cx[i]), _mm256_set1_ps(spheres.cy[i]),
-          _mm256_set1_ps(spheres.cz[i]), _mm256_set1_ps(spheres.r2[i])};
+template <class L>
+inline BasicSphereLanes<L> broadcast_lanes(const SphereColumns& spheres, std::size_t i) {
+  return {L::splat(spheres.cx[i]), L::splat(spheres.cy[i]), L::splat(spheres.cz[i]),
+          L::splat(spheres.r2[i])};
 }
 
-/// An anchored sphere in each lane, as SphereLanes.
-struct AnchoredLanes {
-  __m256 ax, ay, az, mx, my, mz, r2;
+/// An anchored sphere in each lane, as BasicSphereLanes.
+template <class L>
+struct BasicAnchoredLanes {
+  typename L::F ax, ay, az, mx, my, mz, r2;
 };
+using AnchoredLanes = BasicAnchoredLanes<Lanes8>;
 
 inline AnchoredLanes load_lanes(const AnchoredColumns& spheres, std::size_t base) {
   return {_mm256_load_ps(spheres.ax + base), _mm256_load_ps(spheres.ay + base),
@@ -280,22 +288,25 @@ inline AnchoredLanes load_lanes(const AnchoredColumns& spheres, std::size_t base
           _mm256_load_ps(spheres.r2 + base)};
 }
 
-inline AnchoredLanes broadcast_lanes(const AnchoredColumns& spheres, std::size_t i) {
-  return {_mm256_set1_ps(spheres.ax[i]), _mm256_set1_ps(spheres.ay[i]),
-          _mm256_set1_ps(spheres.az[i]), _mm256_set1_ps(spheres.mx[i]),
-          _mm256_set1_ps(spheres.my[i]), _mm256_set1_ps(spheres.mz[i]),
-          _mm256_set1_ps(spheres.r2[i])};
+template <class L>
+inline BasicAnchoredLanes<L> broadcast_lanes(const AnchoredColumns& spheres, std::size_t i) {
+  return {L::splat(spheres.ax[i]), L::splat(spheres.ay[i]), L::splat(spheres.az[i]),
+          L::splat(spheres.mx[i]), L::splat(spheres.my[i]), L::splat(spheres.mz[i]),
+          L::splat(spheres.r2[i])};
 }
 
 /// A hit per lane.
-struct HitLanes {
-  __m256 t;
-  __m256i sphere;
+template <class L>
+struct BasicHitLanes {
+  typename L::F t;
+  typename L::I sphere;
 
-  explicit HitLanes(const SphereHit& hit)
-      : t(_mm256_set1_ps(hit.t)), sphere(_mm256_set1_epi32(static_cast<int>(hit.sphere))) {}
-  HitLanes(__m256 t_lanes, __m256i sphere_lanes) : t(t_lanes), sphere(sphere_lanes) {}
+  explicit BasicHitLanes(const SphereHit& hit)
+      : t(L::splat(hit.t)), sphere(L::splat(static_cast<std::int32_t>(hit.sphere))) {}
+  BasicHitLanes(typename L::F t_lanes, typename L::I sphere_lanes)
+      : t(t_lanes), sphere(sphere_lanes) {}
 };
+using HitLanes = BasicHitLanes<Lanes8>;
 
 /// For the ray and sphere of each lane, from the quadratic's b, c and discriminant: in `ahead`
 /// whether the ray meets the sphere past t_min, and in `t` where (the near root, or the far one
@@ -303,36 +314,35 @@ struct HitLanes {
 /// `extent_squared()` (s^2) are what the on-surface test needs, the latter asked for only when
 /// some lane may be on a surface. Returns false, leaving both unset, when no lane can have a
 /// root ahead of its ray.
-template <class ExtentSquared>
-inline bool first_roots_from(const RayLanes& ray, __m256 b, __m256 c, __m256 discriminant,
-                             __m256 radius_squared, ExtentSquared&& extent_squared, __m256& t,
-                             __m256& ahead) {
-  const __m256 zero = _mm256_setzero_ps();
-  const __m256 has_roots = _mm256_cmp_ps(discriminant, zero, _CMP_GE_OQ);
+template <class L, class ExtentSquared>
+inline bool first_roots_from(const BasicRayLanes<L>& ray, typename L::F b, typename L::F c,
+                             typename L::F discriminant, typename L::F radius_squared,
+                             ExtentSquared&& extent_squared, typename L::F& t,
+                             typename L::M& ahead) {
+  using F = typename L::F;
+  using M = typename L::M;
+  const F zero = L::zero();
+  const M has_roots = L::greater_equal(discriminant, zero);
   // The roots sum to -2b and multiply to c: from outside (c > 0) a sphere behind the origin
   // (b > 0) has no root ahead. Most groups hold only such spheres and misses, and skip the
   // square root and the division. (An origin on the surface has a root ahead only if b < 0.)
-  const __m256 b_negative = _mm256_cmp_ps(b, zero, _CMP_LT_OQ);
-  const __m256 ahead_or_inside = _mm256_or_ps(b_negative, _mm256_cmp_ps(c, zero, _CMP_LE_OQ));
-  if (_mm256_movemask_ps(_mm256_and_ps(has_roots, ahead_or_inside)) == 0) return false;
-  const __m256 sign_mask = _mm256_set1_ps(-0.0f);
-  const __m256 root = _mm256_sqrt_ps(_mm256_max_ps(discriminant, zero));
+  const M b_negative = L::less(b, zero);
+  const M ahead_or_inside = L::either(b_negative, L::less_equal(c, zero));
+  if (L::bits(L::both(has_roots, ahead_or_inside)) == 0) return false;
+  const F root = L::sqrt(L::max(discriminant, zero));
   // q = -(b + copysign(root, b)), the roots are q and c / q (see ray_sphere.hpp).
-  const __m256 signed_root = _mm256_or_ps(root, _mm256_and_ps(b, sign_mask));
-  const __m256 q = _mm256_xor_ps(_mm256_add_ps(b, signed_root), sign_mask);
-  const __m256 t0 = _mm256_div_ps(c, q);
-  const __m256 t_near = _mm256_min_ps(t0, q);
-  const __m256 t_far = _mm256_max_ps(t0, q);
-  t = _mm256_blendv_ps(t_far, t_near, _mm256_cmp_ps(t_near, ray.t_min, _CMP_GT_OQ));
-  ahead = _mm256_and_ps(has_roots, _mm256_cmp_ps(t, ray.t_min, _CMP_GT_OQ));
+  const F q = L::negate(L::add(b, L::with_sign_of(root, b)));
+  const F t0 = L::div(c, q);
+  const F t_near = L::min(t0, q);
+  const F t_far = L::max(t0, q);
+  t = L::select(L::greater(t_near, ray.t_min), t_near, t_far);
+  ahead = L::both(has_roots, L::greater(t, ray.t_min));
   if (ray.any_on_surface_test) {
-    const __m256 tolerance = _mm256_mul_ps(
-        radius_squared,
-        _mm256_fmadd_ps(ray.on_surface_factor, extent_squared(), ray.on_surface_origin));
-    const __m256 on_surface =
-        _mm256_and_ps(has_roots, _mm256_cmp_ps(_mm256_mul_ps(c, c), tolerance, _CMP_LT_OQ));
-    t = _mm256_andnot_ps(on_surface, t);
-    ahead = _mm256_blendv_ps(ahead, b_negative, on_surface);
+    const F tolerance = L::mul(
+        radius_squared, L::fmadd(ray.on_surface_factor, extent_squared(), ray.on_surface_origin));
+    const M on_surface = L::both(has_roots, L::less(L::mul(c, c), tolerance));
+    t = L::select(on_surface, zero, t);
+    ahead = L::select(on_surface, b_negative, ahead);
   }
   return true;
 }
@@ -340,87 +350,88 @@ inline bool first_roots_from(const RayLanes& ray, __m256 b, __m256 c, __m256 dis
 /// For the ray and sphere of each lane: in `ahead` whether the ray meets the sphere past t_min
 /// (or on its origin, see test_sphere), and in `t` where. Returns false, leaving both unset, when
 /// no lane can have a root ahead of its ray.
-inline bool first_roots(const RayLanes& ray, const SphereLanes& sphere, __m256& t, __m256& ahead) {
-  const __m256 fx = _mm256_sub_ps(ray.ox, sphere.cx);
-  const __m256 fy = _mm256_sub_ps(ray.oy, sphere.cy);
-  const __m256 fz = _mm256_sub_ps(ray.oz, sphere.cz);
-  const __m256 r2 = sphere.r2;
-  const __m256 b =
-      _mm256_fmadd_ps(fx, ray.dx, _mm256_fmadd_ps(fy, ray.dy, _mm256_mul_ps(fz, ray.dz)));
-  const __m256 px = _mm256_fnmadd_ps(b, ray.dx, fx);
-  const __m256 py = _mm256_fnmadd_ps(b, ray.dy, fy);
-  const __m256 pz = _mm256_fnmadd_ps(b, ray.dz, fz);
-  const __m256 perp2 = _mm256_fmadd_ps(px, px, _mm256_fmadd_ps(py, py, _mm256_mul_ps(pz, pz)));
-  const __m256 discriminant = _mm256_sub_ps(r2, perp2);
-  const __m256 c =
-      _mm256_sub_ps(_mm256_fmadd_ps(fx, fx, _mm256_fmadd_ps(fy, fy, _mm256_mul_ps(fz, fz))), r2);
+template <class L>
+inline bool first_roots(const BasicRayLanes<L>& ray, const BasicSphereLanes<L>& sphere,
+                        typename L::F& t, typename L::M& ahead) {
+  using F = typename L::F;
+  const F fx = L::sub(ray.ox, sphere.cx);
+  const F fy = L::sub(ray.oy, sphere.cy);
+  const F fz = L::sub(ray.oz, sphere.cz);
+  const F r2 = sphere.r2;
+  const F b = L::fmadd(fx, ray.dx, L::fmadd(fy, ray.dy, L::mul(fz, ray.dz)));
+  const F px = L::fnmadd(b, ray.dx, fx);
+  const F py = L::fnmadd(b, ray.dy, fy);
+  const F pz = L::fnmadd(b, ray.dz, fz);
+  const F perp2 = L::fmadd(px, px, L::fmadd(py, py, L::mul(pz, pz)));
+  const F discriminant = L::sub(r2, perp2);
+  const F c = L::sub(L::fmadd(fx, fx, L::fmadd(fy, fy, L::mul(fz, fz))), r2);
   return first_roots_from(
       ray, b, c, discriminant, r2, [&] { return r2; }, t, ahead);
 }
 
-/// first_roots for anchored spheres: intersect_anchored_sphere, eight at a time, with the
+/// first_roots for anchored spheres: intersect_anchored_sphere, a sphere per lane, with the
 /// accurate form of the discriminant in each lane.
-inline bool first_roots(const RayLanes& ray, const AnchoredLanes& sphere, __m256& t,
-                        __m256& ahead) {
-  const __m256 gx = _mm256_sub_ps(ray.ox, sphere.ax);
-  const __m256 gy = _mm256_sub_ps(ray.oy, sphere.ay);
-  const __m256 gz = _mm256_sub_ps(ray.oz, sphere.az);
-  const __m256 mx = sphere.mx;
-  const __m256 my = sphere.my;
-  const __m256 mz = sphere.mz;
-  const __m256 r2 = sphere.r2;
-  const __m256 fx = _mm256_add_ps(gx, mx);
-  const __m256 fy = _mm256_add_ps(gy, my);
-  const __m256 fz = _mm256_add_ps(gz, mz);
-  const __m256 c = _mm256_fmadd_ps(
-      gx, _mm256_add_ps(fx, mx),
-      _mm256_fmadd_ps(gy, _mm256_add_ps(fy, my), _mm256_mul_ps(gz, _mm256_add_ps(fz, mz))));
-  const __m256 b =
-      _mm256_fmadd_ps(fx, ray.dx, _mm256_fmadd_ps(fy, ray.dy, _mm256_mul_ps(fz, ray.dz)));
+template <class L>
+inline bool first_roots(const BasicRayLanes<L>& ray, const BasicAnchoredLanes<L>& sphere,
+                        typename L::F& t, typename L::M& ahead) {
+  using F = typename L::F;
+  using M = typename L::M;
+  const F gx = L::sub(ray.ox, sphere.ax);
+  const F gy = L::sub(ray.oy, sphere.ay);
+  const F gz = L::sub(ray.oz, sphere.az);
+  const F mx = sphere.mx;
+  const F my = sphere.my;
+  const F mz = sphere.mz;
+  const F r2 = sphere.r2;
+  const F fx = L::add(gx, mx);
+  const F fy = L::add(gy, my);
+  const F fz = L::add(gz, mz);
+  const F c =
+      L::fmadd(gx, L::add(fx, mx), L::fmadd(gy, L::add(fy, my), L::mul(gz, L::add(fz, mz))));
+  const F b = L::fmadd(fx, ray.dx, L::fmadd(fy, ray.dy, L::mul(fz, ray.dz)));
   // Near the sphere b^2 - c, else Haines's form (see anchored_discriminant). Rays from inside
   // a room are near all of its walls: then Haines's form is skipped. The padding lanes, whose
   // anchors are NaN, count as near (an unordered comparison) and have a NaN discriminant.
-  const __m256 near_form = _mm256_fmsub_ps(b, b, c);
-  const __m256 abs_c = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), c);
-  const __m256 near = _mm256_cmp_ps(abs_c, r2, _CMP_NGT_UQ);
-  __m256 discriminant = near_form;
-  if (_mm256_movemask_ps(near) != (1 << kBatchWidth) - 1) {
-    const __m256 px = _mm256_fnmadd_ps(b, ray.dx, fx);
-    const __m256 py = _mm256_fnmadd_ps(b, ray.dy, fy);
-    const __m256 pz = _mm256_fnmadd_ps(b, ray.dz, fz);
-    const __m256 perp2 = _mm256_fmadd_ps(px, px, _mm256_fmadd_ps(py, py, _mm256_mul_ps(pz, pz)));
-    discriminant = _mm256_blendv_ps(_mm256_sub_ps(r2, perp2), near_form, near);
+  const F near_form = L::fmsub(b, b, c);
+  const M near = L::not_greater(L::abs(c), r2);
+  F discriminant = near_form;
+  if (L::bits(near) != L::kAllLanes) {
+    const F px = L::fnmadd(b, ray.dx, fx);
+    const F py = L::fnmadd(b, ray.dy, fy);
+    const F pz = L::fnmadd(b, ray.dz, fz);
+    const F perp2 = L::fmadd(px, px, L::fmadd(py, py, L::mul(pz, pz)));
+    discriminant = L::select(near, near_form, L::sub(r2, perp2));
   }
   const auto from_anchor_squared = [&] {
-    return _mm256_fmadd_ps(gx, gx, _mm256_fmadd_ps(gy, gy, _mm256_mul_ps(gz, gz)));
+    return L::fmadd(gx, gx, L::fmadd(gy, gy, L::mul(gz, gz)));
   };
   return first_roots_from(ray, b, c, discriminant, r2, from_anchor_squared, t, ahead);
 }
 
 /// comes_before, lane by lane (sphere ids compare unsigned, as std::uint32_t do).
-inline __m256 comes_before(const HitLanes& a, const HitLanes& b) {
-  const __m256i b_not_above_a = _mm256_cmpeq_epi32(_mm256_min_epu32(a.sphere, b.sphere), b.sphere);
-  const __m256 tie =
-      _mm256_andnot_ps(_mm256_castsi256_ps(b_not_above_a), _mm256_cmp_ps(a.t, b.t, _CMP_EQ_OQ));
-  return _mm256_or_ps(_mm256_cmp_ps(a.t, b.t, _CMP_LT_OQ), tie);
+template <class L>
+inline typename L::M comes_before(const BasicHitLanes<L>& a, const BasicHitLanes<L>& b) {
+  const typename L::M tie =
+      L::and_not(L::equal(a.t, b.t), L::at_least_unsigned(a.sphere, b.sphere));
+  return L::either(L::less(a.t, b.t), tie);
 }
 
 /// test_sphere for the ray and sphere (of id `ids`) of each lane, each lane keeping its own
 /// best; returns the lanes whose best it changed (bit i for lane i).
-template <class Lanes>
-inline int test_lanes(const RayLanes& ray, const Lanes& spheres, __m256i ids, HitLanes& best) {
-  __m256 t, ahead;
+template <class L, class Spheres>
+inline unsigned test_lanes(const BasicRayLanes<L>& ray, const Spheres& spheres, typename L::I ids,
+                           BasicHitLanes<L>& best) {
+  typename L::F t;
+  typename L::M ahead;
   if (!first_roots(ray, spheres, t, ahead)) return 0;
-  const HitLanes candidate(t, ids);
-  const __m256 is_origin_sphere =
-      _mm256_castsi256_ps(_mm256_cmpeq_epi32(candidate.sphere, ray.origin_sphere));
-  const __m256 wins =
-      _mm256_and_ps(_mm256_andnot_ps(is_origin_sphere, ahead), comes_before(candidate, best));
-  const int won = _mm256_movemask_ps(wins);
+  const BasicHitLanes<L> candidate(t, ids);
+  const typename L::M wins =
+      L::both(L::and_not(ahead, L::equal(candidate.sphere, ray.origin_sphere)),
+              comes_before(candidate, best));
+  const unsigned won = L::bits(wins);
   if (won == 0) return 0;
-  best.t = _mm256_blendv_ps(best.t, candidate.t, wins);
-  best.sphere = _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(best.sphere),
-                                                     _mm256_castsi256_ps(candidate.sphere), wins));
+  best.t = L::select(wins, candidate.t, best.t);
+  best.sphere = L::select(wins, candidate.sphere, best.sphere);
   return won;
 }
 

@@ -1,9 +1,10 @@
 #pragma once
 // WavefrontExecution<Config>: the execution model that advances many paths together. Each
 // thread keeps a batch of paths in flight, in structure-of-arrays form (ThreadState), and runs
-// every stage over the whole batch before the next: trace the rays to their closest hits eight
-// at a time, shade every hit (emission, the light rays to queue, the next direction, roulette),
-// trace the queued shadow and emitter rays eight at a time, add what they found, retire the
+// every stage over the whole batch before the next: trace the rays to their closest hits
+// sixteen at a time with AVX-512 (eight with AVX2), shade every hit (emission, the light rays to
+// queue, the next direction, roulette), trace the queued shadow and emitter rays as many at a
+// time, add what they found, retire the
 // finished paths and refill the batch with the next samples of the tile. This is the shape of
 // pbrt-v4's wavefront/ integrator and Mitsuba 3's wavefront mode, on a CPU thread's scale.
 //
@@ -27,6 +28,7 @@
 #include <cstdint>
 #include <cstring>
 #include <optional>
+#include <span>
 #include <type_traits>
 #include <vector>
 
@@ -145,8 +147,8 @@ struct PieceLayout {
 
 /// The shading width WavefrontExecution<C> uses: a SIMD register's paths where C's policies
 /// have a form for that many lanes, 16 with AVX-512 and 8 with AVX2, else 1. (Sixteen lanes
-/// measured 1.00-1.16x the speed of eight on the bench scenes, on a Zen 5 core: the shading's
-/// share shrinks, the queries trace eight rays at a time at either width.)
+/// measured 1.00-1.16x the speed of eight on the bench scenes, on a Zen 5 core, for the shading
+/// alone: the queries trace as many rays at a time at either width, kQueryRays.)
 template <typename C>
 consteval int default_shading_width() {
 #if defined(GLINT_AVX2) && defined(__AVX512F__)
@@ -187,7 +189,7 @@ class WavefrontExecution {
   using Lanes = Float<kWidth>;
   using LaneMaskType = Mask<kWidth>;
 
-  /// Paths in flight per thread: enough that eight-ray batches stay full while paths end at
+  /// Paths in flight per thread: enough that the queries' batches stay full while paths end at
   /// different depths, few enough that the batch's state stays in the core's L2 cache.
   static constexpr int kPaths = 256;
   static_assert(kPaths % 64 == 0);  // gather_and_retire's words of ended paths
@@ -507,9 +509,32 @@ class WavefrontExecution {
 
   GLINT_STAGE void trace_closest_hits(ThreadState& state, int live, TraceCounters& counters) const {
     counters.rays += std::uint64_t(live);
-    for (int base = 0; base < live; base += RayBatch::kWidth) {
-      const auto block = std::size_t(base / RayBatch::kWidth);
-      scene_.closest_hits(state.rays[block], lanes_below(live - base), state.hits[block]);
+    for_each_query(live, [&](std::size_t block, LaneMask lanes, bool pair) {
+      if (pair)
+        scene_.closest_hits(std::span<const RayBatch, 2>(&state.rays[block], 2), lanes,
+                            std::span<HitBatch, 2>(&state.hits[block], 2));
+      else
+        scene_.closest_hits(state.rays[block], lanes, state.hits[block]);
+    });
+  }
+
+  /// Rays that one batched query traces: two batches' with AVX-512, whose kernels take sixteen
+  /// lanes at once (Scene::closest_hits for two batches), else one batch's.
+#if defined(GLINT_AVX512)
+  static constexpr int kQueryRays = 2 * RayBatch::kWidth;
+#else
+  static constexpr int kQueryRays = RayBatch::kWidth;
+#endif
+
+  /// Calls query(first batch, lanes, pair) for the first `count` rays of a queue of RayBatches,
+  /// kQueryRays at a time: the rays of batch `first` (and of the next one where `pair`, its lanes
+  /// in bits 8-15) of the mask `lanes`.
+  template <typename Query>
+  static void for_each_query(int count, Query&& query) {
+    for (int base = 0; base < count; base += kQueryRays) {
+      const int rays = std::min(kQueryRays, count - base);
+      query(std::size_t(base / RayBatch::kWidth), LaneMask((std::uint64_t(1) << rays) - 1),
+            rays > RayBatch::kWidth);
     }
   }
 
@@ -747,46 +772,50 @@ class WavefrontExecution {
   /// Traces the queued shadow rays and adds the light of those not blocked to their paths'
   /// irradiance, in the order they were queued (a path's lights in the scene's order).
   GLINT_STAGE void trace_shadow_rays(ThreadState& state) const {
-    const int count = state.shadow_count;
-    for (int base = 0; base < count; base += RayBatch::kWidth) {
-      const auto block = std::size_t(base / RayBatch::kWidth);
-      const LaneMask active = lanes_below(count - base);
-      const LaneMask blocked = scene_.occluded(state.shadow_rays[block], active);
-      for_each_lane(active & ~blocked, [&](int lane) {
-        const auto q = std::size_t(base + lane);
+    for_each_query(state.shadow_count, [&](std::size_t block, LaneMask lanes, bool pair) {
+      const LaneMask blocked =
+          pair ? scene_.occluded(std::span<const RayBatch, 2>(&state.shadow_rays[block], 2), lanes)
+               : scene_.occluded(state.shadow_rays[block], lanes);
+      for_each_lane(lanes & ~blocked, [&](int lane) {
+        const std::size_t q = block * RayBatch::kWidth + std::size_t(lane);
         const auto owner = int(state.shadow_owner[q]);
         state.irradiance.set(owner,
                              state.irradiance.get(owner) + state.shadow_irradiance.get(int(q)));
       });
-    }
+    });
     state.shadow_count = 0;
   }
 
   /// Traces the queued emitter rays: the light arrives where the first sphere hit is the
   /// emitter (PathContext::sample_emitter's test).
   GLINT_STAGE void trace_emitter_rays(ThreadState& state) const {
-    const int count = state.emitter_count;
-    for (int base = 0; base < count; base += RayBatch::kWidth) {
-      const auto block = std::size_t(base / RayBatch::kWidth);
-      const LaneMask active = lanes_below(count - base);
-      HitBatch found;
-      scene_.closest_hits(state.emitter_rays[block], active, found);
-      LaneMask visible = 0;
+    for_each_query(state.emitter_count, [&](std::size_t block, LaneMask lanes, bool pair) {
+      HitBatch found[2];
+      if (pair)
+        scene_.closest_hits(std::span<const RayBatch, 2>(&state.emitter_rays[block], 2), lanes,
+                            std::span<HitBatch, 2>(found));
+      else
+        scene_.closest_hits(state.emitter_rays[block], lanes, found[0]);
+      for (int half = 0; half < (pair ? 2 : 1); ++half) {
+        const std::size_t first = (block + std::size_t(half)) * RayBatch::kWidth;
+        const LaneMask active = (lanes >> (RayBatch::kWidth * half)) & RayBatch::kAllLanes;
+        LaneMask visible = 0;
 #if defined(GLINT_AVX2)
-      IntLanes found_sphere, emitter_sphere;
-      std::memcpy(&found_sphere, found.sphere, sizeof found_sphere);
-      std::memcpy(&emitter_sphere, &state.emitter_sphere[std::size_t(base)], sizeof emitter_sphere);
-      visible = active & bits_of_mask(found_sphere == emitter_sphere);
+        IntLanes found_sphere, emitter_sphere;
+        std::memcpy(&found_sphere, found[half].sphere, sizeof found_sphere);
+        std::memcpy(&emitter_sphere, &state.emitter_sphere[first], sizeof emitter_sphere);
+        visible = active & bits_of_mask(found_sphere == emitter_sphere);
 #else
-      for_each_lane(active, [&](int lane) {
-        if (found.sphere[lane] == state.emitter_sphere[std::size_t(base + lane)])
-          visible |= LaneMask(1) << lane;
-      });
+        for_each_lane(active, [&](int lane) {
+          if (found[half].sphere[lane] == state.emitter_sphere[first + std::size_t(lane)])
+            visible |= LaneMask(1) << lane;
+        });
 #endif
-      for_each_lane(visible, [&](int lane) {
-        state.pending[state.emitter_owner[std::size_t(base + lane)]] |= kEmitterVisible;
-      });
-    }
+        for_each_lane(visible, [&](int lane) {
+          state.pending[state.emitter_owner[first + std::size_t(lane)]] |= kEmitterVisible;
+        });
+      }
+    });
     state.emitter_count = 0;
   }
 
