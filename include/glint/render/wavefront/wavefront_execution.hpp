@@ -412,10 +412,11 @@ class WavefrontExecution {
 
   /// The lanes of block `base` that hold paths first .. last-1.
   static LaneMaskType lanes_between(int base, int first, int last) {
-    LaneMaskType lanes = mask_of<LaneMaskType>(false);
-    for (int i = 0; i < kWidth; ++i)
-      set_lane(lanes, i, base + i >= first && base + i < last ? -1 : 0);
-    return lanes;
+    // Lanes i with first <= base + i < last, as bits, each bound clamped to 0 .. kWidth.
+    const auto below = [](int lanes) {
+      return (std::uint64_t(1) << std::clamp(lanes, 0, kWidth)) - 1;
+    };
+    return mask_of_bits<LaneMaskType>(std::uint32_t(below(last - base) & ~below(first - base)));
   }
 
   /// kWidth consecutive values of a column of the 8-lane blocks `blocks` from path `base` on
