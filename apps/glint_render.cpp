@@ -28,13 +28,6 @@ namespace {
 
 using glint::cli::Variant;
 
-#if defined(GLINT_RENDER_SIMD_SETS)
-// The instruction sets whose entries this program holds, and their entries.
-constexpr glint::Simd kSimds[] = {glint::Simd::scalar, glint::Simd::avx2, glint::Simd::avx512};
-#else
-constexpr std::span<const glint::Simd> kSimds = glint::cli::kCompiledSimds;
-#endif
-
 constexpr glint::cli::Program kProgram{
     "glint-render",
     "usage: glint-render SCENE [options]",
@@ -60,7 +53,7 @@ or a CPU without an instruction set this build uses,
 )",
     Variant::info.name,
     glint::cli::kVariantHasWavefront,
-    kSimds,
+    glint::cli::kProgramSimds,
     glint::cli::kVariantWavefrontLanes};
 
 constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};

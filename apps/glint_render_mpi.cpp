@@ -1,7 +1,10 @@
 // glint-render-mpi: glint-render on several processes, with MPI (`mpirun -n N glint-render-mpi
 // SCENE [options]`), writing the image glint-render writes with the same options, bit for bit.
 // Built for the default variant only (GLINT_VARIANT, as glint-render), with its wavefront
-// renderer by default and its scalar one with --scalar (render_variant.hpp's with_renderer).
+// renderer by default and its scalar one with --scalar (render_variant.hpp's with_renderer),
+// and like glint-render once per instruction set where GLINT_RENDER_SIMD_SETS says so: main
+// (x86-64) initialises MPI, reads the options and runs the chosen set's entry,
+// glint_render_mpi_<set>, which reads them again and renders.
 //
 // Every rank renders with all its threads (render_tiles); rank 0 also schedules,
 // gathers and writes. The render is glint-render's passes. A pixel's sum must grow sample by
@@ -92,7 +95,7 @@ without), 128 + the signal's number when a signal stopped the render (138 for SI
 )",
     Variant::info.name,
     cli::kVariantHasWavefront,
-    cli::kCompiledSimds,
+    cli::kProgramSimds,
     cli::kVariantWavefrontLanes};
 
 // SIGUSR1 too: mpirun forwards it as it is, without killing the ranks a second later.
@@ -867,6 +870,16 @@ std::string load_line(const LoadTimes& t, const MpiOptions& mpi) {
   return line;
 }
 
+#if defined(GLINT_RENDER_SIMD_SETS)
+}  // namespace
+// Each defined by this file compiled for its instruction set (GLINT_ISA_LEVEL): run() there, for
+// a rank of MPI_COMM_WORLD already initialised.
+extern "C" int glint_render_mpi_sse2(int rank, int size, const char* host, int argc, char** argv);
+extern "C" int glint_render_mpi_avx2(int rank, int size, const char* host, int argc, char** argv);
+extern "C" int glint_render_mpi_avx512(int rank, int size, const char* host, int argc, char** argv);
+namespace {
+#endif
+
 int run(const World& world, int argc, char** argv) {
   cli::Options options;
   MpiOptions mpi;
@@ -876,8 +889,10 @@ int run(const World& world, int argc, char** argv) {
     return false;
   };
   // Every rank parses the same arguments; rank 0 alone speaks.
+  glint::Simd simd;
   try {
     options = cli::parse_options(argc, argv, kProgram, own_option);
+    simd = cli::run_simd(kProgram, options);
   } catch (const cli::UsageError&) {
     const cli::Failure failure = cli::current_failure(kProgram);
     if (world.rank == 0) std::cerr << failure.message;
@@ -887,6 +902,27 @@ int run(const World& world, int argc, char** argv) {
     if (world.rank == 0) std::cout << cli::help_text(kProgram);
     return 0;
   }
+  // Each rank runs the renderer of the instruction set it chose: all give the same image.
+  if (simd != glint::kCompiledSimd) {
+#if defined(GLINT_RENDER_SIMD_SETS)
+    const char* host = world.host.c_str();
+    switch (simd) {
+      case glint::Simd::scalar:
+        return glint_render_mpi_sse2(world.rank, world.size, host, argc, argv);
+      case glint::Simd::avx2:
+        return glint_render_mpi_avx2(world.rank, world.size, host, argc, argv);
+      case glint::Simd::avx512:
+        return glint_render_mpi_avx512(world.rank, world.size, host, argc, argv);
+    }
+#endif
+    if (world.rank == 0)
+      std::cerr << kProgram.name << ": error: no renderer for --simd " << glint::simd_name(simd)
+                << " in this program\n";
+    return 1;
+  }
+  // Once MPI is initialised, so that these handlers, not MPI's, answer the stop signals; by the
+  // instruction set that renders, whose stop flag they set.
+  cli::install_signal_handlers(kProgram.name, kStopSignals);
   const bool speak = world.rank == 0 && !options.quiet;
 
   std::string output;
@@ -978,6 +1014,15 @@ int run(const World& world, int argc, char** argv) {
 
 }  // namespace
 
+#if defined(GLINT_RENDER_SIMD_SETS)
+extern "C" int GLINT_ISA_CONCAT(glint_render_mpi_, GLINT_ISA_LEVEL)(int rank, int size,
+                                                                    const char* host, int argc,
+                                                                    char** argv) {
+  return run(World{rank, size, host}, argc, argv);
+}
+#endif
+
+#if !defined(GLINT_RENDER_SIMD_SETS) || defined(GLINT_RENDER_MAIN)
 int main(int argc, char** argv) {
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
@@ -988,9 +1033,8 @@ int main(int argc, char** argv) {
   int host_size = 0;
   MPI_Get_processor_name(host, &host_size);
   world.host.assign(host, std::size_t(host_size));
-  // After MPI_Init, so that these handlers, not MPI's, answer the stop signals.
-  cli::install_signal_handlers(kProgram.name, kStopSignals);
   const int status = run(world, argc, argv);
   MPI_Finalize();
   return status;
 }
+#endif

@@ -5,6 +5,8 @@
 // own translation units instantiate it. Each program includes it once (one translation unit
 // each), and with it the CPU check (cpu_check.hpp), which runs before main.
 
+#include <span>
+
 #include "cpu_check.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/render/renderer.hpp"
@@ -38,6 +40,15 @@ inline constexpr int kVariantWavefrontLanes = [] {
 /// The instruction set this translation unit was compiled for, as a program that holds no other
 /// lists it (Program::simds).
 inline constexpr glint::Simd kCompiledSimds[] = {glint::kCompiledSimd};
+
+/// The instruction sets whose renderers this program holds (Program::simds): every one where it
+/// is compiled once per set (GLINT_RENDER_SIMD_SETS, apps/CMakeLists.txt), else its own.
+#if defined(GLINT_RENDER_SIMD_SETS)
+inline constexpr glint::Simd kProgramSimds[] = {glint::Simd::scalar, glint::Simd::avx2,
+                                                glint::Simd::avx512};
+#else
+inline constexpr std::span<const glint::Simd> kProgramSimds = kCompiledSimds;
+#endif
 
 /// The renderer of variant V for `model`: `render.template operator()<R>()` with R
 /// WavefrontRenderer<V> or Renderer<V>, returning what it returns. A variant without the

@@ -34,7 +34,7 @@ lamp_room=$source_dir/bench/scenes/lamp-room.scene
 small=(--width 72 --height 56 --spp 13 --max-depth 8 --seed 3)
 
 # The same bytes, PNG and PFM, as glint-render's, for RANKS ranks of THREADS threads each.
-case_same_bytes() { # RANKS THREADS [OPTION...]: OPTIONs for both programs (--scalar)
+case_same_bytes() { # RANKS THREADS [OPTION...]: OPTIONs for both programs (--scalar, --simd)
   local ranks=$1 threads=$2
   shift 2
   "$program" "$lamp_room" "${small[@]}" "$@" -o one.png --hdr one.pfm --quiet ||
@@ -43,9 +43,10 @@ case_same_bytes() { # RANKS THREADS [OPTION...]: OPTIONs for both programs (--sc
     -o many.png --hdr many.pfm 2>err.log || fail "glint-render-mpi failed (status $?)"
   cmp one.png many.png || fail "the PNG differs from glint-render's"
   cmp one.pfm many.pfm || fail "the PFM differs from glint-render's"
-  local model="[a-z]+"
+  local model="[a-z]+" simd="[a-z0-9]+"
   [[ " $* " == *" --scalar "* ]] && model=scalar
-  local summary="^glint-render-mpi \([a-z_]+, $model, [a-z0-9]+, (one path at a time|[0-9]+ paths at once)\): .*lamp-room\.scene -> many\.png: 72x56, 13 spp, depth 8 in [0-9.]+ s on $ranks ranks? x $threads threads: "
+  [[ " $* " == *" --simd scalar "* ]] && simd=scalar
+  local summary="^glint-render-mpi \([a-z_]+, $model, $simd, (one path at a time|[0-9]+ paths at once)\): .*lamp-room\.scene -> many\.png: 72x56, 13 spp, depth 8 in [0-9.]+ s on $ranks ranks? x $threads threads: "
   grep -Eq "$summary" err.log || fail "no summary line naming $ranks ranks x $threads threads"
   grep -Eq "^glint-render-mpi: idle: rank 0 [0-9.]+ s \([0-9]+%\)" err.log || fail "no idle line"
   no_temporaries

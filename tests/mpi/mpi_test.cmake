@@ -1,7 +1,8 @@
 # glint-render-mpi under mpirun (label `mpi`), where MPI was found and glint-render-mpi built:
-# the bytes of glint-render's image for 1, 2 and 3 ranks (and with --scalar), checkpoints resumed
-# across the two programs, a scene error printed once, ranks started with different settings
-# refused, a bad option, a rank killed mid-render, and a stop by a signal
+# the bytes of glint-render's image for 1, 2 and 3 ranks (and with --scalar, and with --simd
+# scalar), checkpoints resumed across the two programs, a scene error printed once, ranks
+# started with different settings refused, a bad option, a rank killed mid-render, and a stop
+# by a signal
 # (tests/mpi/mpi_render_test.bash). Ranks outnumber the cores with --oversubscribe; CI
 # runs as root, which Open MPI refuses unless told otherwise.
 if(NOT TARGET glint-render-mpi OR NOT MPIEXEC_EXECUTABLE)
@@ -30,6 +31,8 @@ glint_mpi_test(same-bytes-2-ranks same_bytes 2 1)
 glint_mpi_test(same-bytes-3-ranks same_bytes 3 2)
 # The scalar renderer (--scalar) over MPI: glint-render --scalar's bytes too.
 glint_mpi_test(same-bytes-2-ranks-scalar same_bytes 2 1 --scalar)
+# The x86-64 renderer (--simd scalar; every CPU runs it): the same bytes.
+glint_mpi_test(same-bytes-2-ranks-simd-scalar same_bytes 2 1 --simd scalar)
 glint_mpi_test(resume-across-programs resume_across)
 glint_mpi_test(scene-error scene_error)
 glint_mpi_test(bad-option bad_option)
