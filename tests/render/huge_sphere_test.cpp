@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "../support/float_values.hpp"
 #include "glint/render/renderer.hpp"
 #include "glint/variants.hpp"
 #include "renderer_types.hpp"
@@ -19,9 +20,10 @@ using glint::Vec3;
 
 namespace {
 
+using glint_test::kDegree;
+
 using Long = long double;
 constexpr double kUnitRoundoff = 0x1p-24;
-constexpr double kDegree = M_PI / 180.0;
 
 const std::vector<float>& floor_radii() {
   static const std::vector<float> radii = {1e3f, 1e4f, 1e5f, 1e6f, 1e7f, 1e8f, 1e9f, 1e10f};

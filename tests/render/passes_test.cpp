@@ -26,7 +26,7 @@
 
 namespace {
 
-glint::Scene small_scene() {
+glint::Scene passes_scene() {
   return glint::test::small_scene("passes");
 }
 
@@ -43,12 +43,7 @@ glint::RenderSettings small_settings(int spp, int max_pass, int threads, int til
   return settings;
 }
 
-/// Whether two films hold the same bits (== would call -0 and 0 equal, and NaN unequal).
-bool same_bits(const glint::Film& a, const glint::Film& b) {
-  return a.width() == b.width() && a.height() == b.height() &&
-         std::memcmp(a.pixels().data(), b.pixels().data(),
-                     a.pixels().size() * sizeof(glint::Color)) == 0;
-}
+using glint_test::same_bits;
 
 /// The image of each pixel's first `samples` samples, summed in one go by render_pixel.
 template <typename V>
@@ -143,7 +138,7 @@ TEST_CASE("max_pass_samples is checked", "[passes]") {
 
 TEMPLATE_TEST_CASE("all passes give the one-shot image bit for bit", "[passes]",
                    glint::variants::report, glint::variants::fast) {
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = passes_scene();
   const int threads = GENERATE(1, 2, 5);
   const int tile = GENERATE(4, 16);
   const int max_pass = GENERATE(1, 4, 32);
@@ -162,7 +157,7 @@ TEMPLATE_TEST_CASE("all passes give the one-shot image bit for bit", "[passes]",
 
 TEMPLATE_TEST_CASE("a render stopped after k passes holds exactly those passes' samples",
                    "[passes]", glint::variants::report, glint::variants::fast) {
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = passes_scene();
   const glint::RenderSettings base = small_settings(13, 4, 1, 8);
   const std::vector<int> ends = glint::pass_ends(13, 4);  // 1, 2, 4, 8, 12, 13
   const int passes = GENERATE(1, 2, 3, 5);
@@ -186,7 +181,7 @@ TEMPLATE_TEST_CASE("a render stopped after k passes holds exactly those passes' 
 
 TEST_CASE("the pass callback sees each pass's image, the one a stop there returns", "[passes]") {
   using V = glint::variants::report;
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = passes_scene();
   const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
   const std::vector<int> ends = glint::pass_ends(13, 4);
   std::vector<glint::Film> images;
@@ -212,7 +207,7 @@ TEST_CASE("the pass callback sees each pass's image, the one a stop there return
 
 TEST_CASE("a stop request ends the render after the current pass", "[passes]") {
   using V = glint::variants::report;
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = passes_scene();
   const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
   std::atomic<bool> stop{false};
 
@@ -252,7 +247,7 @@ TEST_CASE("a stop request ends the render after the current pass", "[passes]") {
 TEST_CASE("keep_sums returns the sums of the passes done, as the last pass reported them",
           "[passes]") {
   using V = glint::variants::report;
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = passes_scene();
   const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
   std::vector<glint::ColorSum> reported;
   glint::RenderControl control;
@@ -273,7 +268,7 @@ TEST_CASE("keep_sums returns the sums of the passes done, as the last pass repor
 
 TEST_CASE("a callback that throws ends the render and reaches the caller", "[passes]") {
   using V = glint::variants::report;
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = passes_scene();
   const glint::RenderSettings settings = small_settings(13, 4, 5, 4);
   glint::RenderControl control;
   control.pass_done = [](const glint::PassReport& r) -> bool {
@@ -288,7 +283,7 @@ TEMPLATE_TEST_CASE("a render resumed after k passes ends bit for bit as an unint
                    "[passes][resume]", glint::Renderer<glint::variants::report>,
                    glint::Renderer<glint::variants::fast>,
                    glint::WavefrontRenderer<glint::variants::fast>) {
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = passes_scene();
   const glint::RenderSettings base = small_settings(13, 4, 2, 8);  // passes end 1 2 4 8 12 13
   const glint::Film full = glint_test::render_by<TestType>(scene, base).film;
   const int passes = GENERATE(1, 2, 3, 5, 6);
@@ -332,7 +327,7 @@ TEMPLATE_TEST_CASE("a render resumed after k passes ends bit for bit as an unint
 
 TEST_CASE("a resumed render that is stopped again holds its passes' samples", "[passes][resume]") {
   using V = glint::variants::report;
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = passes_scene();
   const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
   glint::PixelSums sums;
   glint::RenderControl first;
@@ -361,7 +356,7 @@ TEST_CASE("a resumed render that is stopped again holds its passes' samples", "[
 
 TEST_CASE("a start that does not fit the settings is refused", "[passes][resume]") {
   using V = glint::variants::report;
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = passes_scene();
   const glint::RenderSettings settings = small_settings(13, 4, 2, 8);  // 6 passes
   const glint::PixelSums right(19, 13), wrong(13, 19);
   const auto refused = [&](const glint::RenderStart& from) {
@@ -399,7 +394,7 @@ TEMPLATE_TEST_CASE("render_tiles, tile by tile in any order over two sets of sum
                    "[render_tiles]", glint::Renderer<glint::variants::report>,
                    glint::Renderer<glint::variants::fast>,
                    glint::WavefrontRenderer<glint::variants::fast>) {
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = passes_scene();
   const glint::RenderSettings settings = small_settings(13, 4, 2, 8);
   const glint::RenderResult whole = glint_test::render_by<TestType>(scene, settings);
   const glint::TileGrid grid(settings);
@@ -442,7 +437,7 @@ TEMPLATE_TEST_CASE("render_tiles, tile by tile in any order over two sets of sum
 TEST_CASE("render_tiles with no work returns at once; sums of another size are refused",
           "[render_tiles]") {
   using V = glint::variants::fast;
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = passes_scene();
   glint::PixelSums sums(19, 13);
   ListSource none({});
   const glint::RenderStats stats =

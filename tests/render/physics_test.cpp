@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/float_values.hpp"
 #include "glint/render/renderer.hpp"
 #include "glint/variants.hpp"
 #include "renderer_types.hpp"
@@ -19,7 +20,7 @@ using glint::Vec3;
 
 namespace {
 
-constexpr double kDegree = M_PI / 180.0;
+using glint_test::kDegree;
 
 glint::SceneDescription empty_scene(Vec3 camera, Vec3 look_at, float fov_degrees) {
   glint::SceneDescription scene;
@@ -79,10 +80,7 @@ glint::Film render(const glint::SceneDescription& description, const glint::Rend
   return result.film;
 }
 
-bool same_bits(const glint::Film& a, const glint::Film& b) {
-  return a.width() == b.width() && a.height() == b.height() &&
-         std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Color)) == 0;
-}
+using glint_test::same_bits;
 
 /// Every pixel equal to `expected`, bit for bit.
 void check_every_pixel(const glint::Film& film, Color expected) {

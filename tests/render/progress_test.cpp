@@ -17,7 +17,7 @@
 
 namespace {
 
-glint::Scene small_scene() {
+glint::Scene progress_scene() {
   return glint::test::small_scene("progress");
 }
 
@@ -37,7 +37,7 @@ using Gated = glint::variants::report::with_sampler<GatedSampler>;
 }  // namespace
 
 TEST_CASE("the progress callback counts samples on the calling thread", "[render][progress]") {
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = progress_scene();
   struct Case {
     int width, height, tile, spp;
   };
@@ -106,7 +106,7 @@ TEST_CASE("the progress callback counts samples on the calling thread", "[render
 }
 
 TEST_CASE("progress keeps coming while a sample takes long", "[render][progress]") {
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = progress_scene();
   glint::RenderSettings settings;
   settings.width = 8;
   settings.height = 8;
@@ -136,7 +136,7 @@ TEST_CASE("progress keeps coming while a sample takes long", "[render][progress]
 }
 
 TEST_CASE("the progress callback does not change the image", "[render][progress]") {
-  const glint::Scene scene = small_scene();
+  const glint::Scene scene = progress_scene();
   glint::RenderSettings settings;
   settings.width = 24;
   settings.height = 20;

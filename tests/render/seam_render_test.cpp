@@ -137,7 +137,7 @@ void check_crossing(const glint::SceneDescription& scene, int a, int b, const Ve
 
 /// A closed room of six walls of radius 1e5, 80 across, as bench/scenes/lamp-room.scene: back,
 /// behind the camera, left (red), right (blue), floor, ceiling (spheres 0 to 5); a point light.
-glint::SceneDescription room() {
+glint::SceneDescription walled_room() {
   glint::SceneDescription scene;
   scene.camera.position = Vec3(0.0f, 0.0f, 95.0f);
   const Color grey(0.75f), red(0.75f, 0.25f, 0.25f), blue(0.25f, 0.25f, 0.75f);
@@ -174,7 +174,7 @@ glint::SceneDescription overlapping_balls() {
 TEMPLATE_LIST_TEST_CASE("seams: a camera ray aimed where two walls cross shows one of them lit",
                         "[render][seam]", glint_test::AllRenderers) {
   for (const int behind : {0, 30, 80}) {
-    glint::SceneDescription scene = room();
+    glint::SceneDescription scene = walled_room();
     add_spheres_behind(scene, behind, scene.camera.position);
     INFO(behind << " spheres behind the camera");
     // Left and ceiling, back and floor, right and floor, left and back.

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "../support/float_values.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/scene/validate.hpp"
 
@@ -16,7 +17,7 @@ using glint::Vec3;
 
 namespace {
 
-constexpr double kDegree = M_PI / 180.0;
+using glint_test::kDegree;
 
 glint::CameraDescription oblique_camera() {
   glint::CameraDescription c;

@@ -6,11 +6,12 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "../support/float_values.hpp"
 #include "glint/policy/fresnel.hpp"
 
 namespace {
 
-constexpr double kDegree = M_PI / 180.0;
+using glint_test::kDegree;
 
 /// Unpolarised reflectance from the sine and tangent forms (valid for 0 < ti < critical).
 double textbook_reflectance(double incident_angle, double n1, double n2) {

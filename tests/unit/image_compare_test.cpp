@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "../support/float_values.hpp"
 #include "glint/image/compare.hpp"
 #include "glint/image/false_color.hpp"
 #include "glint/io/image_writer.hpp"
@@ -16,8 +17,8 @@
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
+using glint_test::kInf;
+using glint_test::kNaN;
 
 // Reference (row by row): grey 1, black, grey 2, grey 0.5. The test image differs by 0.25 in
 // every channel of the black pixel and by -1 in the red channel of the grey-2 pixel. Every

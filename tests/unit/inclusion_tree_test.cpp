@@ -13,6 +13,7 @@
 
 #include "glint/math/random.hpp"
 #include "glint/scene/inclusion_tree.hpp"
+#include "random_vectors.hpp"
 
 using glint::SphereRelation;
 using glint::Vec3;
@@ -246,9 +247,7 @@ bool reference_rejects(const glint::SceneDescription& scene) {
   return false;
 }
 
-float uniform(glint::Pcg32& rng, float lo, float hi) {
-  return lo + (hi - lo) * rng.next_float();
-}
+using glint::test::uniform;
 
 /// Spheres of many sizes along a long strip (so that the sweep prunes), a third of them
 /// opaque. With `valid`, transparent spheres that would partially overlap another transparent

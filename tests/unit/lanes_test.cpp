@@ -12,6 +12,7 @@
 #include <limits>
 #include <vector>
 
+#include "../support/float_values.hpp"
 #include "glint/math/lanes.hpp"
 #include "glint/math/random.hpp"
 #include "glint/math/sampling.hpp"
@@ -36,15 +37,12 @@ using glint::Vec3Lanes;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
+using glint_test::kInf;
+using glint_test::kNaN;
+using glint_test::same_bits;
 
 FloatLanes lanes_of(const float (&values)[kLaneCount]) {
   return glint::load<FloatLanes>(values);
-}
-
-bool same_bits(float a, float b) {
-  return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
 }
 
 }  // namespace

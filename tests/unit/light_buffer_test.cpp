@@ -25,7 +25,7 @@ using glint::Ray;
 using glint::RayBatch;
 using glint::Vec3;
 
-constexpr int kWidth = RayBatch::kWidth;
+constexpr int kBatchWidth = RayBatch::kWidth;
 
 using glint::test::uniform;
 using glint::test::unit_vector;
@@ -174,17 +174,17 @@ TEST_CASE("LightBuffer: the cells of eight directions at once are cell_of's", "[
     directions.push_back(d);
   }
   int faces_seen = 0;
-  for (std::size_t base = 0; base + kWidth <= directions.size(); base += kWidth) {
+  for (std::size_t base = 0; base + kBatchWidth <= directions.size(); base += kBatchWidth) {
     RayBatch batch;
-    for (int lane = 0; lane < kWidth; ++lane) {
+    for (int lane = 0; lane < kBatchWidth; ++lane) {
       Ray ray;
       ray.direction = -directions[base + std::size_t(lane)];  // cells() looks back along a ray
       batch.set(lane, ray);
     }
-    alignas(32) std::int32_t cells[kWidth];
+    alignas(32) std::int32_t cells[kBatchWidth];
     _mm256_store_si256(reinterpret_cast<__m256i*>(cells),
                        LightBuffer::cells(glint::avx2::ray_lanes(batch)));
-    for (int lane = 0; lane < kWidth; ++lane) {
+    for (int lane = 0; lane < kBatchWidth; ++lane) {
       const Vec3& d = directions[base + std::size_t(lane)];
       INFO("direction (" << d.x << ", " << d.y << ", " << d.z << ")");
       CHECK(cells[lane] == LightBuffer::cell_of(d));
@@ -291,7 +291,7 @@ TEST_CASE("LightBuffer: blocks answers as the full scan for rays that end at the
       for (int i = 0; i < 3000; ++i) {
         const Ray ray = random_shadow_ray(rng, world);
         RayBatch batch;
-        for (int lane = 0; lane < kWidth; ++lane)
+        for (int lane = 0; lane < kBatchWidth; ++lane)
           batch.set(lane, ray);
         const glint::avx2::RayLanes lanes = glint::avx2::ray_lanes(batch);
         const int cell = _mm256_extract_epi32(LightBuffer::cells(lanes), 0);
@@ -324,7 +324,7 @@ TEST_CASE("LightBuffer: ends_here takes the rays of PathContext::light_rays only
   const Ray to_light = shadow_ray(Vec3(3.0f, -2.0f, 1.0f), light, glint::kNoSphere, Vec3(0.0f));
   const auto taken = [&](const Ray& ray) {
     RayBatch batch;
-    for (int lane = 0; lane < kWidth; ++lane)
+    for (int lane = 0; lane < kBatchWidth; ++lane)
       batch.set(lane, ray);
     return buffer.ends_here(glint::avx2::ray_lanes(batch), _mm256_load_ps(batch.t_max), 0xFFu);
   };
@@ -354,9 +354,9 @@ TEST_CASE("occluded: batches of shadow rays answer as the single-ray query",
           const glint::Scene scene = build(world);
           int lanes_checked = 0, blocked_lanes = 0;
           for (int b = 0; b < 500; ++b) {
-            Ray rays[kWidth];
+            Ray rays[kBatchWidth];
             RayBatch batch;
-            for (int lane = 0; lane < kWidth; ++lane) {
+            for (int lane = 0; lane < kBatchWidth; ++lane) {
               rays[lane] = random_shadow_ray(rng, world);
               batch.set(lane, rays[lane]);
             }
@@ -364,7 +364,7 @@ TEST_CASE("occluded: batches of shadow rays answer as the single-ray query",
                 b % 2 == 0 ? RayBatch::kAllLanes : rng.next_u32() & RayBatch::kAllLanes;
             const LaneMask blocked = scene.occluded(batch, active);
             CHECK((blocked & ~active) == 0);
-            for (int lane = 0; lane < kWidth; ++lane) {
+            for (int lane = 0; lane < kBatchWidth; ++lane) {
               if (!((active >> lane) & 1u)) continue;
               const Ray& ray = rays[lane];
               INFO("lane " << lane << " origin (" << ray.origin.x << ", " << ray.origin.y << ", "

@@ -158,7 +158,7 @@ void coherent_rays(glint::Pcg32& rng, float half, Ray (&rays)[kWidth]) {
   }
 }
 
-struct Tally {
+struct BatchTally {
   int lanes = 0, hits = 0, blocked = 0, batches = 0;
 };
 
@@ -205,7 +205,7 @@ void check_pair(const glint::Scene& scene, const RayBatch& batch, LaneMask activ
 /// Checks closest_hits and occluded against the single-ray queries for one batch, with the
 /// lanes of `active` set and the others holding `junk`.
 void check_batch(const glint::Scene& scene, const Ray (&rays)[kWidth], LaneMask active,
-                 const Ray& junk, Tally& tally,
+                 const Ray& junk, BatchTally& tally,
                  glint::RayCoherence coherence = glint::RayCoherence::unknown) {
   RayBatch batch;
   batch.heads_into_origin_sphere = 0;
@@ -247,11 +247,12 @@ void check_batch(const glint::Scene& scene, const Ray (&rays)[kWidth], LaneMask 
 }
 
 /// Random and coherent batches, all lanes active and random subsets, against `scene`.
-Tally check_scene(const glint::Scene& scene, const std::vector<glint::SphereDescription>& spheres,
-                  float half, std::uint64_t seed, int batches,
-                  glint::RayCoherence coherence = glint::RayCoherence::unknown) {
+BatchTally check_scene(const glint::Scene& scene,
+                       const std::vector<glint::SphereDescription>& spheres, float half,
+                       std::uint64_t seed, int batches,
+                       glint::RayCoherence coherence = glint::RayCoherence::unknown) {
   glint::Pcg32 rng(seed, 11);
-  Tally tally;
+  BatchTally tally;
   for (int b = 0; b < batches; ++b) {
     Ray rays[kWidth];
     if (b % 3 == 2)
@@ -275,7 +276,7 @@ Tally check_scene(const glint::Scene& scene, const std::vector<glint::SphereDesc
   return tally;
 }
 
-void check_coverage(const Tally& tally) {
+void check_coverage(const BatchTally& tally) {
   CHECK(tally.hits > tally.lanes / 8);
   CHECK(tally.blocked > tally.lanes / 8);
   CHECK(tally.blocked < tally.lanes);
@@ -293,7 +294,7 @@ TEST_CASE("closest_hits and occluded: small scenes, walls and the linear set",
         if (walls) add_room(test, 30.0f, 1e5f);
         add_random_spheres(test, rng, count, 20.0f, 0.5f, 6.0f);
         const glint::Scene scene = test.build();
-        const Tally tally =
+        const BatchTally tally =
             check_scene(scene, test.spheres, 25.0f, 100 + std::uint64_t(count), 600);
         check_coverage(tally);
       }
@@ -313,7 +314,7 @@ TEST_CASE("closest_hits and occluded: huge walls, rays near them", "[geometry][r
       test.add(Vec3(radius + 30.0f, 0.0f, 0.0f), radius);
       add_random_spheres(test, rng, 20, 15.0f, 0.5f, 3.0f);
       const glint::Scene scene = test.build();
-      Tally tally = check_scene(scene, test.spheres, 20.0f, 7, 600);
+      BatchTally tally = check_scene(scene, test.spheres, 20.0f, 7, 600);
       // Rays from just above the floor, along it and into it.
       for (int b = 0; b < 200; ++b) {
         Ray rays[kWidth];
@@ -342,7 +343,7 @@ TEST_CASE("closest_hits and occluded: large scenes, the BVH", "[geometry][ray_ba
         const float half = 50.0f * std::cbrt(float(count) / 1000.0f);
         add_random_spheres(test, rng, count, half, 0.3f, 3.0f);
         const glint::Scene scene = test.build();
-        const Tally tally =
+        const BatchTally tally =
             check_scene(scene, test.spheres, half, 200 + std::uint64_t(count), 1500);
         check_coverage(tally);
       }
@@ -365,7 +366,7 @@ TEST_CASE("closest_hits and occluded: incoherent batches in a BVH beyond the cac
       REQUIRE(glint::SphereBvh(inputs).traversal_bytes() >
               glint::SphereBvh::kInterleavedTraversalBytes);
       const glint::Scene scene = test.build();
-      const Tally tally =
+      const BatchTally tally =
           check_scene(scene, test.spheres, 120.0f, 300, 1500, glint::RayCoherence::incoherent);
       check_coverage(tally);
     }
@@ -387,7 +388,7 @@ TEST_CASE("closest_hits: ties between duplicates go to the lowest id in every la
             test.add(c, r);
         }
         const glint::Scene scene = test.build();
-        Tally tally;
+        BatchTally tally;
         for (int b = 0; b < 300; ++b) {
           Ray rays[kWidth];
           for (Ray& ray : rays) {

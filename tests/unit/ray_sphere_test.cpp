@@ -20,6 +20,7 @@
 #include "glint/geometry/sphere_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/scene/scene.hpp"
+#include "random_vectors.hpp"
 
 using glint::Vec3;
 
@@ -27,9 +28,7 @@ namespace {
 
 constexpr double kUnitRoundoff = 0x1p-24;  // float's unit roundoff
 
-float uniform(glint::Pcg32& rng, float lo, float hi) {
-  return lo + (hi - lo) * rng.next_float();
-}
+using glint::test::uniform;
 
 Vec3 random_unit_vector(glint::Pcg32& rng) {
   const float z = uniform(rng, -1.0f, 1.0f);

@@ -9,13 +9,15 @@
 #include <limits>
 #include <vector>
 
+#include "../support/float_values.hpp"
 #include "glint/image/tone_map.hpp"
 #include "glint/io/image_writer.hpp"
 
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+using glint_test::kInf;
+using glint_test::kNaN;
+
 constexpr glint::ToneMapOperator kOperators[] = {
     glint::ToneMapOperator::clip, glint::ToneMapOperator::reinhard, glint::ToneMapOperator::aces};
 

@@ -18,6 +18,7 @@
 #include "glint/geometry/sphere_kernel.hpp"
 #include "glint/geometry/wall_set.hpp"
 #include "glint/math/random.hpp"
+#include "random_vectors.hpp"
 
 using glint::Vec3;
 
@@ -26,9 +27,7 @@ namespace {
 using Long = long double;
 constexpr double kUnitRoundoff = 0x1p-24;  // float's unit roundoff
 
-float uniform(glint::Pcg32& rng, float lo, float hi) {
-  return lo + (hi - lo) * rng.next_float();
-}
+using glint::test::uniform;
 
 float log_uniform(glint::Pcg32& rng, float lo_exponent, float hi_exponent) {
   return std::pow(10.0f, uniform(rng, lo_exponent, hi_exponent));

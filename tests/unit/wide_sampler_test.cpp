@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "../support/float_values.hpp"
 #include "glint/math/random.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
@@ -20,9 +21,7 @@ using glint::UInt64;
 
 namespace {
 
-bool same_bits(float a, float b) {
-  return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
-}
+using glint_test::same_bits;
 
 std::uint64_t any_u64(glint::Pcg32& rng) {
   // The ends of the range and small values among them, where carries and shifts go wrong.

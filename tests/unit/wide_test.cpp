@@ -12,6 +12,7 @@
 #include <limits>
 #include <vector>
 
+#include "../support/float_values.hpp"
 #include "glint/math/elementary_functions.hpp"
 #include "glint/math/random.hpp"
 #include "glint/math/sampling.hpp"
@@ -26,12 +27,9 @@
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
-
-bool same_bits(float a, float b) {
-  return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
-}
+using glint_test::kInf;
+using glint_test::kNaN;
+using glint_test::same_bits;
 
 /// Arguments number `Arity` per call; `inputs` holds them call after call.
 template <std::size_t Arity>
