@@ -4,6 +4,7 @@
 // including degenerate ones (all centres equal, all in a plane, one huge sphere among tiny ones).
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -25,19 +26,27 @@ struct Reference {
     best.t = ray.t_max;
     for (const auto& s : spheres) {
       if (s.id == ray.origin_sphere) continue;
-      glint::SphereQuadratic q;
-      if (!glint::sphere_quadratic(ray.origin, ray.direction, s.center, s.radius * s.radius, q))
-        continue;
+      const float r2 = s.radius * s.radius;
+      const glint::SphereQuadratic q = glint::quadratic(
+          glint::line_lane(ray.origin, ray.direction),
+          glint::BasicSphereLanes<glint::Lanes1>{s.center.x, s.center.y, s.center.z, r2});
+      if (!(q.discriminant >= 0.0f)) continue;
       // An origin on this sphere too (a duplicate of the one the ray leaves): t = 0 heading in,
-      // no hit heading out.
-      if (glint::origin_on_surface(ray, q, s.radius * s.radius, s.radius * s.radius)) {
+      // no hit heading out. The tolerance of sphere_kernel.hpp, c^2 < 8 tol^2 r^2 (|o|^2 + r^2),
+      // in its order of operations.
+      const bool leaves_sphere = ray.origin_sphere != glint::kNoSphere && ray.t_min <= 0.0f;
+      const float factor = leaves_sphere ? glint::kOnSurfaceFactor : 0.0f;
+      const glint::Vec3& o = ray.origin;
+      const float tolerance =
+          r2 * std::fma(factor, r2, factor * std::fma(o.x, o.x, std::fma(o.y, o.y, o.z * o.z)));
+      if (q.c * q.c < tolerance) {
         if (q.b < 0.0f && (0.0f < best.t || (best.t == 0.0f && s.id < best.sphere))) {
           best.t = 0.0f;
           best.sphere = s.id;
         }
         continue;
       }
-      const glint::SphereRoots roots = glint::roots_from(q.b, q.c, q.discriminant);
+      const glint::SphereRoots roots = glint::roots_of(q);
       const float t = roots.near > ray.t_min ? roots.near : roots.far;
       // Nearest first, the lowest id at equal t; t_max itself is excluded.
       if (t > ray.t_min && t < ray.t_max && (t < best.t || (t == best.t && s.id < best.sphere))) {
@@ -321,16 +330,16 @@ TEST_CASE("test_grouped_spheres answers as test_spheres, bit for bit", "[bvh]") 
   };
   int hits = 0;
   for (const glint::Ray& ray : hard_rays(spheres, rng, 60.0f, 4000)) {
-    const glint::GroupRay lanes(ray);
+    const glint::GroupRay group_ray(ray);
     for (std::size_t first = 0; first < spheres.size(); first += 16) {
       const std::size_t count = 1 + rng.next_u32() % 16;
       for (const bool stop : {false, true}) {
         glint::SphereHit expected, actual;
         expected.t = actual.t = ray.t_max;
-        const bool expected_found =
-            glint::test_spheres(ray, Flat{flat.data()}, first, first + count, expected, stop);
+        const bool expected_found = glint::test_spheres(group_ray.one, Flat{flat.data()}, first,
+                                                        first + count, expected, stop);
         const bool found =
-            glint::test_grouped_spheres(ray, lanes, groups.data(), first, count, actual, stop);
+            glint::test_grouped_spheres(group_ray, groups.data(), first, count, actual, stop);
         // With `stop` both return at the first sphere in index order that test_sphere takes.
         REQUIRE(found == expected_found);
         REQUIRE(actual.sphere == expected.sphere);

@@ -7,7 +7,7 @@
 //
 // The answer must be the one the full scan gives, bit for bit (ray_batch.hpp), so the cells are
 // conservative and the spheres they list are tested by the scan's own kernel
-// (avx2::test_lanes). A cell lists every sphere that the kernel could find a hit on for a ray
+// (test_lanes). A cell lists every sphere that the kernel could find a hit on for a ray
 // of that cell, with margins worked out below (see LightBuffer::Margins); a ray that does not
 // end at the light to within those margins (LightBuffer::ends_here) is left to the full scan.
 // Only the spheres of the linear set (small scenes) are listed: a cell is two bytes, a bit for

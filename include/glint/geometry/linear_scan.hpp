@@ -38,13 +38,14 @@ class LinearScan {
   /// The queries with the scalar kernel, the reference for the SIMD one.
   bool closest_hit_scalar(const Ray& ray, SphereHit& hit) const {
     SphereHit best = hit_to_beat(ray, hit);
-    if (!test_spheres(ray, set(), 0, set().size(), best, /*stop_at_first=*/false)) return false;
+    if (!test_spheres(RayLane(ray), set(), 0, set().size(), best, /*stop_at_first=*/false))
+      return false;
     hit = best;
     return true;
   }
   bool any_hit_scalar(const Ray& ray) const {
     SphereHit best = hit_to_beat(ray, SphereHit{});
-    return test_spheres(ray, set(), 0, set().size(), best, /*stop_at_first=*/true);
+    return test_spheres(RayLane(ray), set(), 0, set().size(), best, /*stop_at_first=*/true);
   }
 
 #ifdef GLINT_AVX2

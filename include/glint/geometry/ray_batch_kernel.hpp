@@ -2,7 +2,7 @@
 // The ray-parallel form of the leaf kernel: the rays of a RayBatch (or, with AVX-512, of two
 // consecutive ones), one per lane, against one sphere at a time, its values broadcast. Each
 // lane pairs its ray with the sphere through the very arithmetic of the sphere-parallel scan
-// (avx2::test_lanes, sphere_kernel.hpp: the same operations, fused alike and in the same order,
+// (test_lanes, sphere_kernel.hpp: the same operations, fused alike and in the same order,
 // the roles of broadcast and lane swapped, at eight lanes or sixteen), so each ray gets bit for
 // bit the t that the single-ray AVX2 scan gives it; and since hit order is total, keeping the
 // first in hit order sphere by sphere gives the answer that the scan's eight lanes and final

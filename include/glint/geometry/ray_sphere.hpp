@@ -16,46 +16,82 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "glint/geometry/simd.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
-struct SphereRoots {
-  float near;
-  float far;
+// The formulas are written once over a register type L (simd.hpp): for one ray and one sphere
+// at Lanes1, and lane by lane in the SIMD kernels (sphere_kernel.hpp), which so give each ray
+// the bits that the scalar form gives it.
+
+/// A ray's origin and unit direction in each lane of L's registers.
+template <class L>
+struct LineLanes {
+  typename L::F ox, oy, oz, dx, dy, dz;
 };
 
-/// The roots of t^2 + 2 b t + c = 0 from a non-negative discriminant b^2 - c, however it was
-/// computed: q = -(b + sign(b) sqrt(discriminant)) and c / q, the stable pair.
-inline SphereRoots roots_from(float b, float c, float discriminant) {
-  const float q = -(b + std::copysign(std::sqrt(discriminant), b));
-  const float t0 = c / q;
-  return {min_of(t0, q), max_of(t0, q)};
-}
+/// A sphere given by its centre and squared radius in each lane.
+template <class L>
+struct BasicSphereLanes {
+  typename L::F cx, cy, cz, r2;
+};
 
 /// The quadratic in t of a ray (unit direction) and a sphere, t^2 + 2 b t + c = 0: b = f.d and
 /// c = |f|^2 - r^2 for the offset f of the ray's origin from the centre, and its discriminant
 /// b^2 - c in the form accurate for the kind of sphere. c is the origin's signed distance from
 /// the surface times |f| + r, and b the cosine of the direction with the outward normal there
 /// times |f|: what decides a root at the origin itself (see sphere_kernel.hpp).
-struct SphereQuadratic {
-  float b;
-  float c;
-  float discriminant;
+template <class L>
+struct QuadraticLanes {
+  typename L::F b, c, discriminant;
 };
 
-/// The quadratic of a sphere given by its centre and squared radius, with Haines's
-/// discriminant r^2 - |f - (f.d)d|^2; false, leaving `q` unset, if the ray's line misses it.
-inline bool sphere_quadratic(const Vec3& origin, const Vec3& direction, const Vec3& center,
-                             float radius_squared, SphereQuadratic& q) {
-  const Vec3 f = origin - center;
-  const float b = fused_dot(f, direction);
-  const Vec3 perpendicular = fused_minus_scaled(f, b, direction);
-  const float discriminant = radius_squared - fused_dot(perpendicular, perpendicular);
-  if (!(discriminant >= 0.0f)) return false;
-  q = {b, fused_dot(f, f) - radius_squared, discriminant};
-  return true;
+/// The quadratic of a sphere given by its centre, with Haines's discriminant
+/// r^2 - |f - (f.d)d|^2, lane by lane.
+template <class L>
+inline QuadraticLanes<L> quadratic(const LineLanes<L>& ray, const BasicSphereLanes<L>& sphere) {
+  using F = typename L::F;
+  const F fx = L::sub(ray.ox, sphere.cx);
+  const F fy = L::sub(ray.oy, sphere.cy);
+  const F fz = L::sub(ray.oz, sphere.cz);
+  const F b = L::fmadd(fx, ray.dx, L::fmadd(fy, ray.dy, L::mul(fz, ray.dz)));
+  const F px = L::fnmadd(b, ray.dx, fx);
+  const F py = L::fnmadd(b, ray.dy, fy);
+  const F pz = L::fnmadd(b, ray.dz, fz);
+  const F perp2 = L::fmadd(px, px, L::fmadd(py, py, L::mul(pz, pz)));
+  const F c = L::sub(L::fmadd(fx, fx, L::fmadd(fy, fy, L::mul(fz, fz))), sphere.r2);
+  return {b, c, L::sub(sphere.r2, perp2)};
+}
+
+/// Both roots of each lane's quadratic, near <= far.
+template <class L>
+struct RootLanes {
+  typename L::F near, far;
+};
+
+/// The roots of each lane's quadratic from a discriminant >= 0 however it was computed:
+/// q = -(b + sign(b) sqrt(discriminant)) and c / q, the stable pair. (A negative discriminant
+/// counts as 0.)
+template <class L>
+inline RootLanes<L> roots_of(const QuadraticLanes<L>& quadratic) {
+  using F = typename L::F;
+  const F root = L::sqrt(L::max(quadratic.discriminant, L::zero()));
+  const F q = L::negate(L::add(quadratic.b, L::with_sign_of(root, quadratic.b)));
+  const F t0 = L::div(quadratic.c, q);
+  return {L::min(t0, q), L::max(t0, q)};
+}
+
+/// Where a ray meets a sphere, near <= far.
+using SphereRoots = RootLanes<Lanes1>;
+
+/// The quadratic of one ray and one sphere.
+using SphereQuadratic = QuadraticLanes<Lanes1>;
+
+/// A ray's line as the formulas read it at width 1.
+inline LineLanes<Lanes1> line_lane(const Vec3& origin, const Vec3& direction) {
+  return {origin.x, origin.y, origin.z, direction.x, direction.y, direction.z};
 }
 
 /// Both ray parameters where the ray meets the sphere of squared radius `radius_squared`,
@@ -63,9 +99,11 @@ inline bool sphere_quadratic(const Vec3& origin, const Vec3& direction, const Ve
 inline bool intersect_sphere_squared_radius(const Vec3& origin, const Vec3& direction,
                                             const Vec3& center, float radius_squared,
                                             SphereRoots& roots) {
-  SphereQuadratic q;
-  if (!sphere_quadratic(origin, direction, center, radius_squared, q)) return false;
-  roots = roots_from(q.b, q.c, q.discriminant);
+  const SphereQuadratic q =
+      quadratic(line_lane(origin, direction),
+                BasicSphereLanes<Lanes1>{center.x, center.y, center.z, radius_squared});
+  if (!(q.discriminant >= 0.0f)) return false;
+  roots = roots_of(q);
   return true;
 }
 
@@ -107,39 +145,69 @@ inline AnchoredSphere anchor_sphere(const Vec3& center, float radius, const Vec3
   return sphere;
 }
 
-/// The discriminant b^2 - c for an anchored sphere, in whichever of two forms is accurate for
-/// this origin. Near the sphere (|c| <= r^2, i.e. |f| <= sqrt(2) r) b^2 - c itself: both terms
-/// are accurate, its error is about u (b^2 + |c|) <= 3 u r^2, and far smaller for the grazing
-/// rays (b and c small) whose discriminant is small; Haines's r^2 - |f - b d|^2 carries an
-/// error of u r^2 whatever the ray. Farther away Haines's form, for the reason it exists (a
-/// sphere small next to its distance).
-inline float anchored_discriminant(const Vec3& f, const Vec3& direction,
-                                   const AnchoredSphere& sphere, float b, float c) {
-  if (std::abs(c) <= sphere.radius_squared) return std::fma(b, b, -c);
-  const Vec3 perpendicular = fused_minus_scaled(f, b, direction);
-  return sphere.radius_squared - fused_dot(perpendicular, perpendicular);
+/// An anchored sphere in each lane.
+template <class L>
+struct BasicAnchoredLanes {
+  typename L::F ax, ay, az, mx, my, mz, r2;
+};
+
+inline BasicAnchoredLanes<Lanes1> anchored_lane(const AnchoredSphere& sphere) {
+  return {sphere.anchor.x, sphere.anchor.y, sphere.anchor.z,      sphere.offset.x,
+          sphere.offset.y, sphere.offset.z, sphere.radius_squared};
 }
 
-/// The quadratic of an anchored sphere (see SphereQuadratic); false, leaving `q` unset, if the
-/// ray's line misses it.
-inline bool anchored_quadratic(const Vec3& origin, const Vec3& direction,
-                               const AnchoredSphere& sphere, SphereQuadratic& q) {
-  const Vec3 g = origin - sphere.anchor;
-  const Vec3 f = g + sphere.offset;
-  const float c = fused_dot(g, f + sphere.offset);
-  const float b = fused_dot(f, direction);
-  const float discriminant = anchored_discriminant(f, direction, sphere, b, c);
-  if (!(discriminant >= 0.0f)) return false;
-  q = {b, c, discriminant};
-  return true;
+/// The quadratic of an anchored sphere, lane by lane: b = f.d and c = g.(f + m) (see
+/// AnchoredSphere), and the discriminant b^2 - c in whichever of two forms is accurate for the
+/// lane's origin. Near the sphere (|c| <= r^2, i.e. |f| <= sqrt(2) r) b^2 - c itself: both
+/// terms are accurate, its error is about u (b^2 + |c|) <= 3 u r^2, and far smaller for the
+/// grazing rays (b and c small) whose discriminant is small; Haines's r^2 - |f - b d|^2 carries
+/// an error of u r^2 whatever the ray. Farther away Haines's form, for the reason it exists (a
+/// sphere small next to its distance). Rays from inside a room are near all of its walls: when
+/// every lane is near, Haines's form is not computed. NaN anchors (padding lanes) count as near
+/// (an unordered comparison) and give a NaN discriminant.
+template <class L>
+struct AnchoredQuadraticLanes : QuadraticLanes<L> {
+  typename L::F gx, gy, gz;  ///< g, the offset of the origin from the anchor
+
+  /// |g|^2, the squared distance of the origin from the anchor.
+  typename L::F from_anchor_squared() const {
+    return L::fmadd(gx, gx, L::fmadd(gy, gy, L::mul(gz, gz)));
+  }
+};
+
+template <class L>
+inline AnchoredQuadraticLanes<L> quadratic(const LineLanes<L>& ray,
+                                           const BasicAnchoredLanes<L>& sphere) {
+  using F = typename L::F;
+  using M = typename L::M;
+  const F gx = L::sub(ray.ox, sphere.ax);
+  const F gy = L::sub(ray.oy, sphere.ay);
+  const F gz = L::sub(ray.oz, sphere.az);
+  const F fx = L::add(gx, sphere.mx);
+  const F fy = L::add(gy, sphere.my);
+  const F fz = L::add(gz, sphere.mz);
+  const F c = L::fmadd(gx, L::add(fx, sphere.mx),
+                       L::fmadd(gy, L::add(fy, sphere.my), L::mul(gz, L::add(fz, sphere.mz))));
+  const F b = L::fmadd(fx, ray.dx, L::fmadd(fy, ray.dy, L::mul(fz, ray.dz)));
+  const F near_form = L::fmsub(b, b, c);
+  const M near = L::not_greater(L::abs(c), sphere.r2);
+  F discriminant = near_form;
+  if (L::bits(near) != L::kAllLanes) {
+    const F px = L::fnmadd(b, ray.dx, fx);
+    const F py = L::fnmadd(b, ray.dy, fy);
+    const F pz = L::fnmadd(b, ray.dz, fz);
+    const F perp2 = L::fmadd(px, px, L::fmadd(py, py, L::mul(pz, pz)));
+    discriminant = L::select(near, near_form, L::sub(sphere.r2, perp2));
+  }
+  return {{b, c, discriminant}, gx, gy, gz};
 }
 
 /// intersect_sphere for an anchored sphere. `direction` must be unit length.
 inline bool intersect_anchored_sphere(const Vec3& origin, const Vec3& direction,
                                       const AnchoredSphere& sphere, SphereRoots& roots) {
-  SphereQuadratic q;
-  if (!anchored_quadratic(origin, direction, sphere, q)) return false;
-  roots = roots_from(q.b, q.c, q.discriminant);
+  const SphereQuadratic q = quadratic(line_lane(origin, direction), anchored_lane(sphere));
+  if (!(q.discriminant >= 0.0f)) return false;
+  roots = roots_of(q);
   return true;
 }
 

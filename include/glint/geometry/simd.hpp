@@ -4,12 +4,14 @@
 // glint/instruction_set.hpp's.
 //
 // The kernels that pair rays with spheres lane by lane (sphere_kernel.hpp, ray_batch_kernel.hpp)
-// are written once over a register type L: Lanes8, AVX2's eight floats, or Lanes16, AVX-512's
-// sixteen. Each of L's operations is one instruction of its set, and the two sets' instructions
-// for an operation round alike (IEEE single precision, fused where the name says so), so a lane
-// gets the same bits at either width. A comparison gives an L::M: at eight lanes a register of
-// all-ones lanes, at sixteen a k-register, the form each set compares into and selects by.
+// are written once over a register type L: Lanes1, plain scalars, Lanes8, AVX2's eight floats,
+// or Lanes16, AVX-512's sixteen. Each of L's operations is one instruction of its set (or one
+// IEEE operation), and they round alike (IEEE single precision, fused where the name says so),
+// so a lane gets the same bits at any width. A comparison gives an L::M: a bool at one lane, at
+// eight a register of all-ones lanes, at sixteen a k-register, the form each set compares into
+// and selects by.
 
+#include <cmath>
 #include <cstdint>
 
 #include "glint/instruction_set.hpp"
@@ -21,6 +23,60 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 /// AVX2 registers that hold them, and the eight-lane width of math/lanes.hpp. Every other lane
 /// count of the geometry derives from it.
 inline constexpr int kBatchWidth = 8;
+
+/// One lane in plain scalars: the register type at which the kernels written over L answer for
+/// a single ray and a single sphere (the scalar queries and the BVH's leaves), whatever the
+/// instruction set. Each operation rounds as Lanes8's and Lanes16's instruction does: std::fma
+/// is exactly rounded (an instruction with FMA, the C library's fmaf without), std::sqrt and
+/// the operators are IEEE's, and min and max pick their operands as minps and maxps do.
+struct Lanes1 {
+  static constexpr int kWidth = 1;
+  using F = float;
+  using I = std::int32_t;
+  using M = bool;
+  static constexpr unsigned kAllLanes = 1;
+
+  static F splat(float value) { return value; }
+  static I splat(std::int32_t value) { return value; }
+  static F zero() { return 0.0f; }
+
+  static F add(F a, F b) { return a + b; }
+  static F sub(F a, F b) { return a - b; }
+  static F mul(F a, F b) { return a * b; }
+  static F div(F a, F b) { return a / b; }
+  static F sqrt(F a) { return std::sqrt(a); }
+  static F min(F a, F b) { return a < b ? a : b; }  ///< b if either is NaN
+  static F max(F a, F b) { return a > b ? a : b; }
+  static F fmadd(F a, F b, F c) { return std::fma(a, b, c); }
+  static F fnmadd(F a, F b, F c) { return std::fma(-a, b, c); }
+  static F fmsub(F a, F b, F c) { return std::fma(a, b, -c); }
+  static F with_sign_of(F magnitude, F sign) { return std::copysign(magnitude, sign); }
+  static F negate(F a) { return -a; }
+  static F abs(F a) { return std::fabs(a); }
+
+  static M less(F a, F b) { return a < b; }
+  static M less_equal(F a, F b) { return a <= b; }
+  static M greater(F a, F b) { return a > b; }
+  static M greater_equal(F a, F b) { return a >= b; }
+  static M equal(F a, F b) { return a == b; }
+  static M not_greater(F a, F b) { return !(a > b); }
+  static M not_less(F a, F b) { return !(a < b); }
+  static M equal(I a, I b) { return a == b; }
+  static M at_least_unsigned(I a, I b) {
+    return static_cast<std::uint32_t>(a) >= static_cast<std::uint32_t>(b);
+  }
+
+  static M both(M a, M b) { return a && b; }
+  static M either(M a, M b) { return a || b; }
+  static M and_not(M a, M b) { return a && !b; }
+  static unsigned bits(M m) { return m ? 1u : 0u; }
+  static M mask_of_bits(unsigned bits) { return (bits & 1u) != 0; }
+  static F select(M m, F if_set, F if_clear) { return m ? if_set : if_clear; }
+  static I select(M m, I if_set, I if_clear) { return m ? if_set : if_clear; }
+  static M select(M m, M if_set, M if_clear) { return m ? if_set : if_clear; }
+  static F keep(M m, F a) { return m ? a : 0.0f; }
+  static I keep(M m, I a) { return m ? a : 0; }
+};
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE
 

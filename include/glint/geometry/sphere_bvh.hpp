@@ -6,6 +6,7 @@
 // groups of eight (bvh/leaf_groups.hpp): a single ray culls a group with one AVX2 pass and
 // runs test_sphere on the few spheres left, so its hits are test_sphere's, bit for bit.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -205,13 +206,15 @@ class SphereBvh {
     }
   };
 
+  // Out of line: inlined into the batched queries, it crowds the registers of their linear
+  // scans, which small scenes spend their time in.
   template <bool kAnyHit>
-  bool traverse(const Ray& ray, SphereHit& best) const {
+  [[gnu::noinline]] bool traverse(const Ray& ray, SphereHit& best) const {
     const SphereGroup* groups = leaves_.data();
-    const GroupRay lanes(ray);
+    const GroupRay group_ray(ray);
     return bvh::traverse<kAnyHit>(
         wide_, ray, best, [&](std::uint32_t first, std::uint32_t count, SphereHit& leaf_best) {
-          return test_grouped_spheres(ray, lanes, groups, first, count, leaf_best, kAnyHit);
+          return test_grouped_spheres(group_ray, groups, first, count, leaf_best, kAnyHit);
         });
   }
 
@@ -219,12 +222,11 @@ class SphereBvh {
   LaneMask traverse_interleaved(const Ray (&lane_rays)[RayBatch::kWidth], LaneMask active,
                                 SphereHit (&best)[RayBatch::kWidth]) const {
     const SphereGroup* groups = leaves_.data();
+    const auto group_rays = per_lane<GroupRay>(lane_rays);
     return bvh::traverse_interleaved<kAnyHit>(
         wide_, lane_rays, active, best,
         [&](int lane, std::uint32_t first, std::uint32_t count, SphereHit& leaf_best) {
-          const GroupRay lanes(lane_rays[lane]);
-          return test_grouped_spheres(lane_rays[lane], lanes, groups, first, count, leaf_best,
-                                      kAnyHit);
+          return test_grouped_spheres(group_rays[lane], groups, first, count, leaf_best, kAnyHit);
         },
         [&](std::uint32_t first, std::uint32_t count) {
           const SphereGroup* group = groups + first / SphereGroup::kSize;
@@ -239,13 +241,26 @@ class SphereBvh {
                            const Ray (&lane_rays)[RayBatch::kWidth],
                            SphereHit (&best)[RayBatch::kWidth]) const {
     const GroupedSpheres leaves{leaves_.data()};
+    const auto lane_kernel_rays = per_lane<RayLane>(lane_rays);
     return bvh::traverse_packet<kAnyHit>(
         wide_, rays, active, best,
         [&](int lane, std::uint32_t first, std::uint32_t count, SphereHit& leaf_best) {
-          return test_spheres(lane_rays[lane], leaves, first, first + count, leaf_best, kAnyHit);
+          return test_spheres(lane_kernel_rays[lane], leaves, first, first + count, leaf_best,
+                              kAnyHit);
         });
   }
 #endif
+
+  /// What the leaf kernel reads of each lane's ray (a RayLane or a GroupRay), made once per
+  /// traversal rather than at every leaf the lane enters.
+  template <class KernelRay>
+  static std::array<KernelRay, RayBatch::kWidth> per_lane(
+      const Ray (&lane_rays)[RayBatch::kWidth]) {
+    return [&]<std::size_t... lane>(std::index_sequence<lane...>) {
+      return std::array<KernelRay, RayBatch::kWidth>{KernelRay(lane_rays[lane])...};
+    }
+    (std::make_index_sequence<RayBatch::kWidth>{});
+  }
 
   bvh::BinaryTree tree_;             // building and box queries
   std::vector<bvh::WideNode> wide_;  // ray traversal

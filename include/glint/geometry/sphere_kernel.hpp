@@ -1,17 +1,14 @@
 #pragma once
-// The leaf kernel: one ray against a run of spheres, keeping the first hit in hit order
-// (accelerator.hpp). test_sphere is the reference for one sphere and test_spheres runs it over
-// a run; SphereSet's and WallSet's scalar paths and the BVH's leaves use these. Where spheres
-// cross, a ray's origin on one of them is decided by its direction (see below). avx2::closest_hit
-// and avx2::any_hit are the 8-wide form of the same test for the sets' structure-of-arrays
-// storage (SphereColumns for spheres given by their centre, AnchoredColumns for anchored ones,
-// see ray_sphere.hpp): the same formulas, the same tie rule and the same operations in the same
-// order, fused where the scalar form uses std::fma (math/vector.hpp's fused_dot), so that both
-// answer bit for bit alike, with or without FMA instructions. Their arithmetic is written once
-// over lanes that each pair a ray with a sphere (test_lanes), in the registers of Lanes8 or
-// Lanes16 (simd.hpp): here one ray against eight spheres, in ray_batch_kernel.hpp eight or
-// sixteen rays against one sphere, which so gives each ray exactly the t that this scan gives
-// it.
+// The leaf kernel: rays against spheres, each ray keeping its first hit in hit order
+// (accelerator.hpp). Where spheres cross, a ray's origin on one of them is decided by its
+// direction (see below). The arithmetic is written once, test_lanes, over lanes that each pair a
+// ray with a sphere, in the registers of Lanes1, Lanes8 or Lanes16 (simd.hpp); its formulas are
+// ray_sphere.hpp's. At one lane it is test_sphere, which test_spheres runs over a run of spheres
+// (SphereSet's and WallSet's scalar paths, the BVH's leaves); avx2::closest_hit and
+// avx2::any_hit test one ray against eight spheres of the sets' structure-of-arrays storage
+// (SphereColumns for spheres given by their centre, AnchoredColumns for anchored ones); in
+// ray_batch_kernel.hpp eight or sixteen rays meet one sphere. Every operation rounds alike at
+// every width, so each ray gets the same t from all of them, with or without FMA instructions.
 
 #include <bit>
 #include <cmath>
@@ -70,82 +67,172 @@ inline constexpr float kOnSurfaceTolerance = 0x1p-19f;
 /// 8 kOnSurfaceTolerance^2, the factor of the test above.
 inline constexpr float kOnSurfaceFactor = 8.0f * kOnSurfaceTolerance * kOnSurfaceTolerance;
 
-/// The factor of the on-surface test for `ray`: kOnSurfaceFactor for a ray that leaves a sphere
-/// from its origin, else 0 (no origin counts as on a surface).
-inline float on_surface_factor(const Ray& ray) {
-  return ray.origin_sphere != kNoSphere && ray.t_min <= 0.0f ? kOnSurfaceFactor : 0.0f;
-}
+/// A ray in every lane, in registers of L (geometry/simd.hpp), with what the on-surface test
+/// needs of it.
+template <class L>
+struct BasicRayLanes : LineLanes<L> {
+  using F = typename L::F;
+  using I = typename L::I;
+  F t_min;
+  I origin_sphere;
+  /// The on-surface test's factor (kOnSurfaceFactor for a ray that leaves a sphere from its
+  /// origin, else 0: no origin counts as on a surface) and that factor times |origin|^2.
+  F on_surface_factor, on_surface_origin;
+  bool any_on_surface_test;  ///< whether some lane's factor is not 0
 
-/// Whether the origin of `ray` counts as on the sphere of quadratic `q` and squared radius
-/// `radius_squared`, `extent_squared` being s^2 (see above).
-inline bool origin_on_surface(const Ray& ray, const SphereQuadratic& q, float radius_squared,
-                              float extent_squared) {
-  const float factor = on_surface_factor(ray);
-  if (factor == 0.0f) return false;
-  const float tolerance =
-      radius_squared * std::fma(factor, extent_squared, factor * fused_dot(ray.origin, ray.origin));
-  return q.c * q.c < tolerance;
-}
-
-/// If the ray meets the sphere of quadratic `q` (discriminant >= 0) past ray.t_min at a point
-/// that comes before `best`, makes it the best and returns true. With `on_surface` (the origin
-/// counts as on the sphere), that point is the origin if the ray heads into the sphere, and
-/// there is none otherwise; else it is the first root past ray.t_min.
-inline bool take_first_root(const Ray& ray, const SphereQuadratic& q, bool on_surface,
-                            std::uint32_t id, SphereHit& best) {
-  float t = 0.0f;
-  if (on_surface) {
-    if (!(q.b < 0.0f)) return false;
-  } else {
-    const SphereRoots roots = roots_from(q.b, q.c, q.discriminant);
-    t = roots.near > ray.t_min ? roots.near : roots.far;
-    if (!(t > ray.t_min)) return false;
+  explicit BasicRayLanes(const Ray& ray)
+      : BasicRayLanes(L::splat(ray.origin.x), L::splat(ray.origin.y), L::splat(ray.origin.z),
+                      L::splat(ray.direction.x), L::splat(ray.direction.y),
+                      L::splat(ray.direction.z), L::splat(ray.t_min),
+                      L::splat(static_cast<std::int32_t>(ray.origin_sphere))) {}
+  /// A ray per lane (see ray_batch_kernel.hpp).
+  BasicRayLanes(F ox_lanes, F oy_lanes, F oz_lanes, F dx_lanes, F dy_lanes, F dz_lanes,
+                F t_min_lanes, I origin_sphere_lanes)
+      : LineLanes<L>{ox_lanes, oy_lanes, oz_lanes, dx_lanes, dy_lanes, dz_lanes},
+        t_min(t_min_lanes),
+        origin_sphere(origin_sphere_lanes) {
+    const typename L::M leaves_sphere =
+        L::and_not(L::less_equal(t_min, L::zero()),
+                   L::equal(origin_sphere, L::splat(static_cast<std::int32_t>(kNoSphere))));
+    on_surface_factor = L::keep(leaves_sphere, L::splat(kOnSurfaceFactor));
+    on_surface_origin = L::mul(
+        on_surface_factor,
+        L::fmadd(ox_lanes, ox_lanes, L::fmadd(oy_lanes, oy_lanes, L::mul(oz_lanes, oz_lanes))));
+    any_on_surface_test = L::bits(leaves_sphere) != 0;
   }
-  const SphereHit candidate{t, id};
-  if (!comes_before(candidate, best)) return false;
-  best = candidate;
+};
+
+/// A hit per lane.
+template <class L>
+struct BasicHitLanes {
+  typename L::F t;
+  typename L::I sphere;
+
+  explicit BasicHitLanes(const SphereHit& hit)
+      : t(L::splat(hit.t)), sphere(L::splat(static_cast<std::int32_t>(hit.sphere))) {}
+  BasicHitLanes(typename L::F t_lanes, typename L::I sphere_lanes)
+      : t(t_lanes), sphere(sphere_lanes) {}
+};
+
+/// For the ray and sphere of each lane, from their quadratic: in `ahead` whether the ray meets
+/// the sphere past t_min, and in `t` where (the near root, or the far one from inside; 0 for an
+/// origin on the sphere, see above). `radius_squared` and `extent_squared()` (s^2) are what the
+/// on-surface test needs, the latter asked for only when some lane may be on a surface. Returns
+/// false, leaving both unset, when no lane can have a root ahead of its ray.
+template <class L, class ExtentSquared>
+inline bool first_roots_from(const BasicRayLanes<L>& ray, const QuadraticLanes<L>& quadratic,
+                             typename L::F radius_squared, ExtentSquared&& extent_squared,
+                             typename L::F& t, typename L::M& ahead) {
+  using F = typename L::F;
+  using M = typename L::M;
+  const F zero = L::zero();
+  const M has_roots = L::greater_equal(quadratic.discriminant, zero);
+  // One ray and one sphere: most spheres that reach the single-ray test are missed, and their
+  // answer needs nothing more.
+  if constexpr (L::kWidth == 1) {
+    if (!has_roots) return false;
+  }
+  // The roots sum to -2b and multiply to c: from outside (c > 0) a sphere behind the origin
+  // (b > 0) has no root ahead. Most groups hold only such spheres and misses, and skip the
+  // square root and the division. (An origin on the surface has a root ahead only if b < 0.)
+  const M b_negative = L::less(quadratic.b, zero);
+  const M ahead_or_inside = L::either(b_negative, L::less_equal(quadratic.c, zero));
+  if (L::bits(L::both(has_roots, ahead_or_inside)) == 0) return false;
+  const RootLanes<L> both = roots_of(quadratic);
+  t = L::select(L::greater(both.near, ray.t_min), both.near, both.far);
+  ahead = L::both(has_roots, L::greater(t, ray.t_min));
+  if (ray.any_on_surface_test) {
+    const F tolerance = L::mul(
+        radius_squared, L::fmadd(ray.on_surface_factor, extent_squared(), ray.on_surface_origin));
+    const M on_surface = L::both(has_roots, L::less(L::mul(quadratic.c, quadratic.c), tolerance));
+    t = L::select(on_surface, zero, t);
+    ahead = L::select(on_surface, b_negative, ahead);
+  }
   return true;
 }
 
-/// If the ray meets sphere `id` past ray.t_min at a point that comes before `best`, makes that
-/// point the best and returns true. The ray's origin sphere is skipped (see Ray), and an origin
-/// on the sphere decided by the ray's direction (see above).
-inline bool test_sphere(const Ray& ray, const Vec3& center, float radius_squared, std::uint32_t id,
-                        SphereHit& best) {
-  if (id == ray.origin_sphere) return false;
-  SphereQuadratic q;
-  if (!sphere_quadratic(ray.origin, ray.direction, center, radius_squared, q)) return false;
-  return take_first_root(ray, q, origin_on_surface(ray, q, radius_squared, radius_squared), id,
-                         best);
+/// For the ray and sphere of each lane: in `ahead` whether the ray meets the sphere past t_min
+/// (or on its origin, see above), and in `t` where. Returns false, leaving both unset, when no
+/// lane can have a root ahead of its ray.
+template <class L>
+inline bool first_roots(const BasicRayLanes<L>& ray, const BasicSphereLanes<L>& sphere,
+                        typename L::F& t, typename L::M& ahead) {
+  return first_roots_from(
+      ray, quadratic(ray, sphere), sphere.r2, [&] { return sphere.r2; }, t, ahead);
 }
 
-/// test_sphere for an anchored sphere.
-inline bool test_sphere(const Ray& ray, const AnchoredSphere& sphere, std::uint32_t id,
+/// first_roots for anchored spheres, whose extent s is the origin's distance from the anchor.
+template <class L>
+inline bool first_roots(const BasicRayLanes<L>& ray, const BasicAnchoredLanes<L>& sphere,
+                        typename L::F& t, typename L::M& ahead) {
+  const AnchoredQuadraticLanes<L> q = quadratic(ray, sphere);
+  return first_roots_from(
+      ray, q, sphere.r2, [&] { return q.from_anchor_squared(); }, t, ahead);
+}
+
+/// comes_before, lane by lane (sphere ids compare unsigned, as std::uint32_t do).
+template <class L>
+inline typename L::M comes_before(const BasicHitLanes<L>& a, const BasicHitLanes<L>& b) {
+  const typename L::M tie =
+      L::and_not(L::equal(a.t, b.t), L::at_least_unsigned(a.sphere, b.sphere));
+  return L::either(L::less(a.t, b.t), tie);
+}
+
+/// For the ray and sphere (of id `ids`) of each lane: if the ray meets the sphere past t_min
+/// at a point that comes before the lane's `best`, makes it the best. The ray's origin sphere
+/// is skipped (see Ray), and an origin on the sphere decided by the ray's direction (see
+/// above). Returns the lanes whose best it changed (bit i for lane i).
+template <class L, class Spheres>
+inline unsigned test_lanes(const BasicRayLanes<L>& ray, const Spheres& spheres, typename L::I ids,
+                           BasicHitLanes<L>& best) {
+  typename L::F t;
+  typename L::M ahead;
+  if (!first_roots(ray, spheres, t, ahead)) return 0;
+  const BasicHitLanes<L> candidate(t, ids);
+  const typename L::M wins =
+      L::both(L::and_not(ahead, L::equal(candidate.sphere, ray.origin_sphere)),
+              comes_before(candidate, best));
+  const unsigned won = L::bits(wins);
+  if (won == 0) return 0;
+  best.t = L::select(wins, candidate.t, best.t);
+  best.sphere = L::select(wins, candidate.sphere, best.sphere);
+  return won;
+}
+
+/// A ray as the single-ray kernel reads it: test_lanes at one lane.
+using RayLane = BasicRayLanes<Lanes1>;
+
+/// test_lanes for one ray and one sphere (a BasicSphereLanes<Lanes1> or
+/// BasicAnchoredLanes<Lanes1>): whether sphere `id` became the best.
+template <class Sphere>
+inline bool test_sphere(const RayLane& ray, const Sphere& sphere, std::uint32_t id,
                         SphereHit& best) {
-  if (id == ray.origin_sphere) return false;
-  SphereQuadratic q;
-  if (!anchored_quadratic(ray.origin, ray.direction, sphere, q)) return false;
-  const Vec3 from_anchor = ray.origin - sphere.anchor;
-  return take_first_root(
-      ray, q, origin_on_surface(ray, q, sphere.radius_squared, fused_dot(from_anchor, from_anchor)),
-      id, best);
+  const auto lane_id = static_cast<std::int32_t>(id);
+  if (lane_id == ray.origin_sphere) return false;
+  BasicHitLanes<Lanes1> lane(best);
+  if (test_lanes(ray, sphere, lane_id, lane) == 0) return false;
+  best = {lane.t, static_cast<std::uint32_t>(lane.sphere)};
+  return true;
 }
 
 template <IndexedSpheres Spheres>
-bool test_sphere_at(const Ray& ray, const Spheres& spheres, std::size_t i, SphereHit& best) {
-  return test_sphere(ray, spheres.center(i), spheres.radius_squared(i), spheres.id(i), best);
+bool test_sphere_at(const RayLane& ray, const Spheres& spheres, std::size_t i, SphereHit& best) {
+  const Vec3 center = spheres.center(i);
+  return test_sphere(
+      ray, BasicSphereLanes<Lanes1>{center.x, center.y, center.z, spheres.radius_squared(i)},
+      spheres.id(i), best);
 }
 
 template <IndexedAnchoredSpheres Spheres>
-bool test_sphere_at(const Ray& ray, const Spheres& spheres, std::size_t i, SphereHit& best) {
-  return test_sphere(ray, spheres.anchored(i), spheres.id(i), best);
+bool test_sphere_at(const RayLane& ray, const Spheres& spheres, std::size_t i, SphereHit& best) {
+  return test_sphere(ray, anchored_lane(spheres.anchored(i)), spheres.id(i), best);
 }
 
 /// test_sphere for spheres [begin, end); whether any of them became the best. With
 /// `stop_at_first`, returns at the first such sphere (enough for an occlusion query).
 template <class Spheres>
 requires IndexedSpheres<Spheres> || IndexedAnchoredSpheres<Spheres>
-bool test_spheres(const Ray& ray, const Spheres& spheres, std::size_t begin, std::size_t end,
+bool test_spheres(const RayLane& ray, const Spheres& spheres, std::size_t begin, std::size_t end,
                   SphereHit& best, bool stop_at_first) {
   bool found = false;
   for (std::size_t i = begin; i < end; ++i) {
@@ -215,71 +302,22 @@ struct AnchoredColumns {
   std::size_t size;  ///< without the padding
 };
 
-/// A ray in every lane, in registers of L (geometry/simd.hpp).
-template <class L>
-struct BasicRayLanes {
-  using F = typename L::F;
-  using I = typename L::I;
-  F ox, oy, oz, dx, dy, dz, t_min;
-  I origin_sphere;
-  /// The on-surface test's factor (on_surface_factor) and that factor times |origin|^2.
-  F on_surface_factor, on_surface_origin;
-  bool any_on_surface_test;  ///< whether some lane's factor is not 0
-
-  explicit BasicRayLanes(const Ray& ray)
-      : BasicRayLanes(L::splat(ray.origin.x), L::splat(ray.origin.y), L::splat(ray.origin.z),
-                      L::splat(ray.direction.x), L::splat(ray.direction.y),
-                      L::splat(ray.direction.z), L::splat(ray.t_min),
-                      L::splat(static_cast<std::int32_t>(ray.origin_sphere))) {}
-  /// A ray per lane (see ray_batch_kernel.hpp).
-  BasicRayLanes(F ox_lanes, F oy_lanes, F oz_lanes, F dx_lanes, F dy_lanes, F dz_lanes,
-                F t_min_lanes, I origin_sphere_lanes)
-      : ox(ox_lanes),
-        oy(oy_lanes),
-        oz(oz_lanes),
-        dx(dx_lanes),
-        dy(dy_lanes),
-        dz(dz_lanes),
-        t_min(t_min_lanes),
-        origin_sphere(origin_sphere_lanes) {
-    // on_surface_factor, lane by lane, from the same lanes whether broadcast or not, so that a
-    // ray gets the same verdicts in both kernels.
-    const typename L::M leaves_sphere =
-        L::and_not(L::less_equal(t_min, L::zero()),
-                   L::equal(origin_sphere, L::splat(static_cast<std::int32_t>(kNoSphere))));
-    on_surface_factor = L::keep(leaves_sphere, L::splat(kOnSurfaceFactor));
-    on_surface_origin =
-        L::mul(on_surface_factor, L::fmadd(ox, ox, L::fmadd(oy, oy, L::mul(oz, oz))));
-    any_on_surface_test = L::bits(leaves_sphere) != 0;
-  }
-};
 using RayLanes = BasicRayLanes<Lanes8>;
-
-/// A sphere given by its centre in each lane: eight of a SphereColumns (load_lanes), or one
-/// broadcast (broadcast_lanes).
-template <class L>
-struct BasicSphereLanes {
-  typename L::F cx, cy, cz, r2;
-};
 using SphereLanes = BasicSphereLanes<Lanes8>;
+using AnchoredLanes = BasicAnchoredLanes<Lanes8>;
+using HitLanes = BasicHitLanes<Lanes8>;
 
 inline SphereLanes load_lanes(const SphereColumns& spheres, std::size_t base) {
   return {_mm256_load_ps(spheres.cx + base), _mm256_load_ps(spheres.cy + base),
           _mm256_load_ps(spheres.cz + base), _mm256_load_ps(spheres.r2 + base)};
 }
 
+/// Sphere `i` of `spheres` in every lane.
 template <class L>
 inline BasicSphereLanes<L> broadcast_lanes(const SphereColumns& spheres, std::size_t i) {
   return {L::splat(spheres.cx[i]), L::splat(spheres.cy[i]), L::splat(spheres.cz[i]),
           L::splat(spheres.r2[i])};
 }
-
-/// An anchored sphere in each lane, as BasicSphereLanes.
-template <class L>
-struct BasicAnchoredLanes {
-  typename L::F ax, ay, az, mx, my, mz, r2;
-};
-using AnchoredLanes = BasicAnchoredLanes<Lanes8>;
 
 inline AnchoredLanes load_lanes(const AnchoredColumns& spheres, std::size_t base) {
   return {_mm256_load_ps(spheres.ax + base), _mm256_load_ps(spheres.ay + base),
@@ -293,146 +331,6 @@ inline BasicAnchoredLanes<L> broadcast_lanes(const AnchoredColumns& spheres, std
   return {L::splat(spheres.ax[i]), L::splat(spheres.ay[i]), L::splat(spheres.az[i]),
           L::splat(spheres.mx[i]), L::splat(spheres.my[i]), L::splat(spheres.mz[i]),
           L::splat(spheres.r2[i])};
-}
-
-/// A hit per lane.
-template <class L>
-struct BasicHitLanes {
-  typename L::F t;
-  typename L::I sphere;
-
-  explicit BasicHitLanes(const SphereHit& hit)
-      : t(L::splat(hit.t)), sphere(L::splat(static_cast<std::int32_t>(hit.sphere))) {}
-  BasicHitLanes(typename L::F t_lanes, typename L::I sphere_lanes)
-      : t(t_lanes), sphere(sphere_lanes) {}
-};
-using HitLanes = BasicHitLanes<Lanes8>;
-
-/// For the ray and sphere of each lane, from the quadratic's b, c and discriminant: in `ahead`
-/// whether the ray meets the sphere past t_min, and in `t` where (the near root, or the far one
-/// from inside; 0 for an origin on the sphere, see test_sphere). `radius_squared` and
-/// `extent_squared()` (s^2) are what the on-surface test needs, the latter asked for only when
-/// some lane may be on a surface. Returns false, leaving both unset, when no lane can have a
-/// root ahead of its ray.
-template <class L, class ExtentSquared>
-inline bool first_roots_from(const BasicRayLanes<L>& ray, typename L::F b, typename L::F c,
-                             typename L::F discriminant, typename L::F radius_squared,
-                             ExtentSquared&& extent_squared, typename L::F& t,
-                             typename L::M& ahead) {
-  using F = typename L::F;
-  using M = typename L::M;
-  const F zero = L::zero();
-  const M has_roots = L::greater_equal(discriminant, zero);
-  // The roots sum to -2b and multiply to c: from outside (c > 0) a sphere behind the origin
-  // (b > 0) has no root ahead. Most groups hold only such spheres and misses, and skip the
-  // square root and the division. (An origin on the surface has a root ahead only if b < 0.)
-  const M b_negative = L::less(b, zero);
-  const M ahead_or_inside = L::either(b_negative, L::less_equal(c, zero));
-  if (L::bits(L::both(has_roots, ahead_or_inside)) == 0) return false;
-  const F root = L::sqrt(L::max(discriminant, zero));
-  // q = -(b + copysign(root, b)), the roots are q and c / q (see ray_sphere.hpp).
-  const F q = L::negate(L::add(b, L::with_sign_of(root, b)));
-  const F t0 = L::div(c, q);
-  const F t_near = L::min(t0, q);
-  const F t_far = L::max(t0, q);
-  t = L::select(L::greater(t_near, ray.t_min), t_near, t_far);
-  ahead = L::both(has_roots, L::greater(t, ray.t_min));
-  if (ray.any_on_surface_test) {
-    const F tolerance = L::mul(
-        radius_squared, L::fmadd(ray.on_surface_factor, extent_squared(), ray.on_surface_origin));
-    const M on_surface = L::both(has_roots, L::less(L::mul(c, c), tolerance));
-    t = L::select(on_surface, zero, t);
-    ahead = L::select(on_surface, b_negative, ahead);
-  }
-  return true;
-}
-
-/// For the ray and sphere of each lane: in `ahead` whether the ray meets the sphere past t_min
-/// (or on its origin, see test_sphere), and in `t` where. Returns false, leaving both unset, when
-/// no lane can have a root ahead of its ray.
-template <class L>
-inline bool first_roots(const BasicRayLanes<L>& ray, const BasicSphereLanes<L>& sphere,
-                        typename L::F& t, typename L::M& ahead) {
-  using F = typename L::F;
-  const F fx = L::sub(ray.ox, sphere.cx);
-  const F fy = L::sub(ray.oy, sphere.cy);
-  const F fz = L::sub(ray.oz, sphere.cz);
-  const F r2 = sphere.r2;
-  const F b = L::fmadd(fx, ray.dx, L::fmadd(fy, ray.dy, L::mul(fz, ray.dz)));
-  const F px = L::fnmadd(b, ray.dx, fx);
-  const F py = L::fnmadd(b, ray.dy, fy);
-  const F pz = L::fnmadd(b, ray.dz, fz);
-  const F perp2 = L::fmadd(px, px, L::fmadd(py, py, L::mul(pz, pz)));
-  const F discriminant = L::sub(r2, perp2);
-  const F c = L::sub(L::fmadd(fx, fx, L::fmadd(fy, fy, L::mul(fz, fz))), r2);
-  return first_roots_from(
-      ray, b, c, discriminant, r2, [&] { return r2; }, t, ahead);
-}
-
-/// first_roots for anchored spheres: intersect_anchored_sphere, a sphere per lane, with the
-/// accurate form of the discriminant in each lane.
-template <class L>
-inline bool first_roots(const BasicRayLanes<L>& ray, const BasicAnchoredLanes<L>& sphere,
-                        typename L::F& t, typename L::M& ahead) {
-  using F = typename L::F;
-  using M = typename L::M;
-  const F gx = L::sub(ray.ox, sphere.ax);
-  const F gy = L::sub(ray.oy, sphere.ay);
-  const F gz = L::sub(ray.oz, sphere.az);
-  const F mx = sphere.mx;
-  const F my = sphere.my;
-  const F mz = sphere.mz;
-  const F r2 = sphere.r2;
-  const F fx = L::add(gx, mx);
-  const F fy = L::add(gy, my);
-  const F fz = L::add(gz, mz);
-  const F c =
-      L::fmadd(gx, L::add(fx, mx), L::fmadd(gy, L::add(fy, my), L::mul(gz, L::add(fz, mz))));
-  const F b = L::fmadd(fx, ray.dx, L::fmadd(fy, ray.dy, L::mul(fz, ray.dz)));
-  // Near the sphere b^2 - c, else Haines's form (see anchored_discriminant). Rays from inside
-  // a room are near all of its walls: then Haines's form is skipped. The padding lanes, whose
-  // anchors are NaN, count as near (an unordered comparison) and have a NaN discriminant.
-  const F near_form = L::fmsub(b, b, c);
-  const M near = L::not_greater(L::abs(c), r2);
-  F discriminant = near_form;
-  if (L::bits(near) != L::kAllLanes) {
-    const F px = L::fnmadd(b, ray.dx, fx);
-    const F py = L::fnmadd(b, ray.dy, fy);
-    const F pz = L::fnmadd(b, ray.dz, fz);
-    const F perp2 = L::fmadd(px, px, L::fmadd(py, py, L::mul(pz, pz)));
-    discriminant = L::select(near, near_form, L::sub(r2, perp2));
-  }
-  const auto from_anchor_squared = [&] {
-    return L::fmadd(gx, gx, L::fmadd(gy, gy, L::mul(gz, gz)));
-  };
-  return first_roots_from(ray, b, c, discriminant, r2, from_anchor_squared, t, ahead);
-}
-
-/// comes_before, lane by lane (sphere ids compare unsigned, as std::uint32_t do).
-template <class L>
-inline typename L::M comes_before(const BasicHitLanes<L>& a, const BasicHitLanes<L>& b) {
-  const typename L::M tie =
-      L::and_not(L::equal(a.t, b.t), L::at_least_unsigned(a.sphere, b.sphere));
-  return L::either(L::less(a.t, b.t), tie);
-}
-
-/// test_sphere for the ray and sphere (of id `ids`) of each lane, each lane keeping its own
-/// best; returns the lanes whose best it changed (bit i for lane i).
-template <class L, class Spheres>
-inline unsigned test_lanes(const BasicRayLanes<L>& ray, const Spheres& spheres, typename L::I ids,
-                           BasicHitLanes<L>& best) {
-  typename L::F t;
-  typename L::M ahead;
-  if (!first_roots(ray, spheres, t, ahead)) return 0;
-  const BasicHitLanes<L> candidate(t, ids);
-  const typename L::M wins =
-      L::both(L::and_not(ahead, L::equal(candidate.sphere, ray.origin_sphere)),
-              comes_before(candidate, best));
-  const unsigned won = L::bits(wins);
-  if (won == 0) return 0;
-  best.t = L::select(wins, candidate.t, best.t);
-  best.sphere = L::select(wins, candidate.sphere, best.sphere);
-  return won;
 }
 
 /// test_sphere for the eight spheres at `base`, each lane keeping its own best.
@@ -520,23 +418,29 @@ inline bool any_hit(const Ray& ray, const SphereHit& bound, const Columns&... se
 }  // namespace avx2
 #endif
 
-/// What test_grouped_spheres needs of a ray besides the ray: with AVX2 the ray in every lane.
-#ifdef GLINT_AVX2
-using GroupRay = avx2::RayLanes;
-#else
+/// What test_grouped_spheres reads of a ray: its lane for test_sphere and, with AVX2, the ray in
+/// every lane for may_meet. Made once per ray.
 struct GroupRay {
-  explicit GroupRay(const Ray&) {}
-};
+  explicit GroupRay(const Ray& ray)
+      : one(ray)
+#ifdef GLINT_AVX2
+        ,
+        every_lane(ray)
 #endif
+  {
+  }
+  RayLane one;
+#ifdef GLINT_AVX2
+  avx2::RayLanes every_lane;
+#endif
+};
 
 /// test_spheres for spheres [first, first + count) of `groups`, `first` a multiple of
-/// SphereGroup::kSize:
-/// with AVX2, a group's spheres that the ray cannot meet (avx2::may_meet) are skipped before
-/// test_sphere, which decides for the others, so the answer is test_spheres' bit for bit.
-/// `lanes` is GroupRay(ray), made once per ray.
-inline bool test_grouped_spheres(const Ray& ray, [[maybe_unused]] const GroupRay& lanes,
-                                 const SphereGroup* groups, std::size_t first, std::size_t count,
-                                 SphereHit& best, bool stop_at_first) {
+/// SphereGroup::kSize: with AVX2, a group's spheres that the ray cannot meet (avx2::may_meet)
+/// are skipped before test_sphere, which decides for the others, so the answer is
+/// test_spheres' bit for bit.
+inline bool test_grouped_spheres(const GroupRay& ray, const SphereGroup* groups, std::size_t first,
+                                 std::size_t count, SphereHit& best, bool stop_at_first) {
   const GroupedSpheres spheres{groups};
 #ifdef GLINT_AVX2
   bool found = false;
@@ -544,9 +448,9 @@ inline bool test_grouped_spheres(const Ray& ray, [[maybe_unused]] const GroupRay
   for (std::size_t base = first; base < end; base += SphereGroup::kSize) {
     const std::size_t size = end - base < SphereGroup::kSize ? end - base : SphereGroup::kSize;
     unsigned candidates =
-        avx2::may_meet(lanes, groups[base / SphereGroup::kSize]) & ((1u << size) - 1u);
+        avx2::may_meet(ray.every_lane, groups[base / SphereGroup::kSize]) & ((1u << size) - 1u);
     for (; candidates != 0; candidates &= candidates - 1) {
-      if (!test_sphere_at(ray, spheres, base + std::size_t(std::countr_zero(candidates)), best))
+      if (!test_sphere_at(ray.one, spheres, base + std::size_t(std::countr_zero(candidates)), best))
         continue;
       found = true;
       if (stop_at_first) return true;
@@ -554,7 +458,7 @@ inline bool test_grouped_spheres(const Ray& ray, [[maybe_unused]] const GroupRay
   }
   return found;
 #else
-  return test_spheres(ray, spheres, first, first + count, best, stop_at_first);
+  return test_spheres(ray.one, spheres, first, first + count, best, stop_at_first);
 #endif
 }
 

@@ -64,7 +64,7 @@ class WallSet : public LinearScan<WallSet> {
  private:
   void grow() {
     // Padding spheres have NaN anchors: the kernel's comparisons fail for them, so no ray
-    // meets them (see avx2::first_roots).
+    // meets them (see the anchored quadratic, ray_sphere.hpp).
     const std::size_t new_size = ax_.size() + std::size_t(kBatchWidth);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     for (detail::AlignedArray<float>* column : {&ax_, &ay_, &az_})

@@ -31,18 +31,6 @@ inline float max_of(float a, float b) {
   return a > b ? a : b;
 }
 
-/// a.b with fused multiply-adds, z first: fma(ax, bx, fma(ay, by, az bz)), the order of the
-/// geometry's SIMD kernels, so that one ray-sphere test rounds alike at every width and on every
-/// CPU (std::fma is exactly rounded, by an instruction or by the C library).
-inline float fused_dot(const Vec3& a, const Vec3& b) {
-  return std::fma(a.x, b.x, std::fma(a.y, b.y, a.z * b.z));
-}
-
-/// v - s w, each component with one rounding (fused), as the kernels' fnmadd.
-inline Vec3 fused_minus_scaled(const Vec3& v, float s, const Vec3& w) {
-  return {std::fma(-s, w.x, v.x), std::fma(-s, w.y, v.y), std::fma(-s, w.z, v.z)};
-}
-
 inline float max_component(const Vec3& v) {
   return max_of(v.x, max_of(v.y, v.z));
 }

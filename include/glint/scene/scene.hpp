@@ -290,10 +290,9 @@ class Scene {
     if (!walls_.empty() || !linear_.empty()) {
       // hit_to_beat in every lane: the origin sphere's hit where there is one, else (t_max, 0);
       // t = -infinity, which nothing beats, in a lane without a ray.
-      const avx2::BasicHitLanes<L> so_far = avx2::hit_lanes<L>(hit);
-      avx2::BasicHitLanes<L> best(
-          L::select(L::mask_of_bits(active), so_far.t, L::splat(-kInfinity)),
-          L::keep(L::mask_of_bits(found), so_far.sphere));
+      const BasicHitLanes<L> so_far = avx2::hit_lanes<L>(hit);
+      BasicHitLanes<L> best(L::select(L::mask_of_bits(active), so_far.t, L::splat(-kInfinity)),
+                            L::keep(L::mask_of_bits(found), so_far.sphere));
       const LaneMask linear_found =
           avx2::closest_hits(avx2::ray_lanes<L>(rays), best, walls_.columns(), linear_.columns()) &
           active;
@@ -345,13 +344,12 @@ class Scene {
       // single-ray one at its ray's first blocker: for random shadow rays in a room of 40
       // spheres it is 0.92x as fast as eight single-ray queries, but a scan per lane measured
       // no better (0.88x, its overhead); for shadow rays of camera blocks it is 1.4x.
-      const avx2::BasicRayLanes<L> lanes = avx2::ray_lanes<L>(rays);
+      const BasicRayLanes<L> lanes = avx2::ray_lanes<L>(rays);
       const typename L::F t_max = avx2::column_lanes<L>(rays, &RayBatch::t_max);
       // The bound, hit_to_beat(ray, SphereHit{}): (t_max, 0); -infinity without a ray.
       const auto bound = [&](LaneMask with_ray) {
-        return avx2::BasicHitLanes<L>(
-            L::select(L::mask_of_bits(with_ray), t_max, L::splat(-kInfinity)),
-            L::splat(std::int32_t(0)));
+        return BasicHitLanes<L>(L::select(L::mask_of_bits(with_ray), t_max, L::splat(-kInfinity)),
+                                L::splat(std::int32_t(0)));
       };
       if (linear_pending == pending) {
         blocked |=
