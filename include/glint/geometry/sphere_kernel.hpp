@@ -80,14 +80,15 @@ struct BasicRayLanes : LineLanes<L> {
   F on_surface_factor, on_surface_origin;
   bool any_on_surface_test;  ///< whether some lane's factor is not 0
 
-  explicit BasicRayLanes(const Ray& ray)
+  // (Inlined always: a query makes one, and GCC would otherwise call out for it.)
+  [[gnu::always_inline]] explicit BasicRayLanes(const Ray& ray)
       : BasicRayLanes(L::splat(ray.origin.x), L::splat(ray.origin.y), L::splat(ray.origin.z),
                       L::splat(ray.direction.x), L::splat(ray.direction.y),
                       L::splat(ray.direction.z), L::splat(ray.t_min),
                       L::splat(static_cast<std::int32_t>(ray.origin_sphere))) {}
   /// A ray per lane (see ray_batch_kernel.hpp).
-  BasicRayLanes(F ox_lanes, F oy_lanes, F oz_lanes, F dx_lanes, F dy_lanes, F dz_lanes,
-                F t_min_lanes, I origin_sphere_lanes)
+  [[gnu::always_inline]] BasicRayLanes(F ox_lanes, F oy_lanes, F oz_lanes, F dx_lanes, F dy_lanes,
+                                       F dz_lanes, F t_min_lanes, I origin_sphere_lanes)
       : LineLanes<L>{ox_lanes, oy_lanes, oz_lanes, dx_lanes, dy_lanes, dz_lanes},
         t_min(t_min_lanes),
         origin_sphere(origin_sphere_lanes) {
@@ -359,27 +360,21 @@ inline SphereHit first_in_hit_order(const HitLanes& lanes) {
 }
 
 /// The lanes of `group` (bit i for lane i) whose sphere the ray may meet: a superset of those
-/// in which test_sphere finds roots. The discriminant r^2 - |f - (f.d)d|^2 of test_sphere, eight
-/// at once and rounded as test_sphere rounds it; a lane is culled only when it is below
-/// -2^-12 (|f|^2 + r^2), a margin that keeps the cull conservative should the two forms ever
-/// part by a few ulps. NaN keeps a lane. Most lanes of an incoherent ray's leaf are culled; the
-/// few kept cost one scalar test each.
+/// in which test_sphere finds roots. test_sphere's own discriminant, eight spheres at once with
+/// the same operations; a lane is culled only when it is below -2^-12 (|f|^2 + r^2), a margin
+/// that keeps the cull conservative even in a build whose compiler contracts the single-ray
+/// form's multiplications and additions differently (see -ffp-contract in CMakeLists.txt).
+/// NaN keeps a lane. Most lanes of an incoherent ray's leaf are culled; the few kept cost one
+/// single-ray test each.
 inline unsigned may_meet(const RayLanes& ray, const SphereGroup& group) {
-  const __m256 fx = _mm256_sub_ps(ray.ox, _mm256_load_ps(group.cx));
-  const __m256 fy = _mm256_sub_ps(ray.oy, _mm256_load_ps(group.cy));
-  const __m256 fz = _mm256_sub_ps(ray.oz, _mm256_load_ps(group.cz));
-  const __m256 r = _mm256_load_ps(group.radius);
-  const __m256 b =
-      _mm256_fmadd_ps(fx, ray.dx, _mm256_fmadd_ps(fy, ray.dy, _mm256_mul_ps(fz, ray.dz)));
-  const __m256 px = _mm256_fnmadd_ps(b, ray.dx, fx);
-  const __m256 py = _mm256_fnmadd_ps(b, ray.dy, fy);
-  const __m256 pz = _mm256_fnmadd_ps(b, ray.dz, fz);
-  const __m256 perp2 = _mm256_fmadd_ps(px, px, _mm256_fmadd_ps(py, py, _mm256_mul_ps(pz, pz)));
-  const __m256 f2 = _mm256_fmadd_ps(fx, fx, _mm256_fmadd_ps(fy, fy, _mm256_mul_ps(fz, fz)));
-  const __m256 r2 = _mm256_mul_ps(r, r);
-  const __m256 discriminant = _mm256_sub_ps(r2, perp2);
-  const __m256 margin = _mm256_mul_ps(_mm256_add_ps(f2, r2), _mm256_set1_ps(-0x1p-12f));
-  return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(discriminant, margin, _CMP_NLT_UQ)));
+  const __m256 radius = _mm256_load_ps(group.radius);
+  const SphereLanes spheres{_mm256_load_ps(group.cx), _mm256_load_ps(group.cy),
+                            _mm256_load_ps(group.cz), _mm256_mul_ps(radius, radius)};
+  const QuadraticLanes<Lanes8> q = quadratic(ray, spheres);
+  // c + 2 r^2 = |f|^2 + r^2.
+  const __m256 margin = _mm256_mul_ps(_mm256_fmadd_ps(_mm256_set1_ps(2.0f), spheres.r2, q.c),
+                                      _mm256_set1_ps(-0x1p-12f));
+  return Lanes8::bits(Lanes8::not_less(q.discriminant, margin));
 }
 
 /// test_8_spheres over all of `spheres`; with kAnyHit, stops at the first group with a hit.
