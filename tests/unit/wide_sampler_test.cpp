@@ -11,6 +11,7 @@
 
 #include "../support/float_values.hpp"
 #include "glint/math/random.hpp"
+#include "glint/math/sobol.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
 #include "glint/policy/sampler.hpp"
@@ -146,6 +147,30 @@ TEMPLATE_TEST_CASE_SIG("hash_lanes, mix_bits and PCG32 in lanes are their one-va
         INFO("round " << round << ", step " << step << ", lane " << i);
         CHECK(drawn[i] == one[std::size_t(i)].next_u32());
       }
+    }
+  }
+}
+
+TEMPLATE_TEST_CASE_SIG("bit reversal in lanes is the one-word reversal, digit by digit",
+                       "[wide][sampler][unit]", ((int W), W), 8, 16) {
+  // The lanes' form shuffles bytes and looks nibbles up in tables (with AVX2 and AVX-512); the
+  // definition moves digit k to digit 31 - k.
+  const auto by_digits = [](std::uint32_t v) {
+    std::uint32_t r = 0;
+    for (int k = 0; k < 32; ++k)
+      r |= ((v >> k) & 1u) << (31 - k);
+    return r;
+  };
+  glint::Pcg32 rng(2029, std::uint64_t(W));
+  for (int round = 0; round < 2000; ++round) {
+    UInt<W> words{};
+    for (int i = 0; i < W; ++i)
+      glint::set_lane(words, i, round < 32 ? (1u << round) + std::uint32_t(i) : any_u32(rng));
+    const UInt<W> reversed = glint::detail::reverse_bits(words);
+    for (int i = 0; i < W; ++i) {
+      INFO("round " << round << ", lane " << i << ", word " << words[i]);
+      CHECK(reversed[i] == by_digits(words[i]));
+      CHECK(glint::detail::reverse_bits(words[i]) == by_digits(words[i]));
     }
   }
 }
