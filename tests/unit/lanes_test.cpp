@@ -60,27 +60,43 @@ TEST_CASE("lane masks and their bits", "[lanes][unit]") {
   CHECK(glint::bits_of_mask(a != a) == 0b00010100u);
 }
 
-TEST_CASE("load_columns turns eight rows of eight floats, anywhere in memory, into columns",
-          "[lanes][unit]") {
-  // Rows scattered through a larger array, in no order and one of them twice, with NaN, -0
-  // and infinity among the values, which a transpose must carry bit for bit.
-  std::vector<float> memory(200);
+namespace {
+
+/// load_columns on rows that start at `starts` in an array of 400 floats with NaN, -0 and
+/// infinity among the values, which a transpose must carry bit for bit: column j must hold
+/// row i's float j in lane i.
+template <std::size_t kRows>
+void check_load_columns(const std::size_t (&starts)[kRows]) {
+  std::vector<float> memory(400);
   for (std::size_t k = 0; k < memory.size(); ++k)
     memory[k] = float(k) + 0.25f;
   memory[21] = kNaN;
   memory[42] = -0.0f;
-  memory[99] = -kInf;
-  const std::size_t starts[kLaneCount] = {40, 3, 120, 17, 40, 77, 91, 150};
-  const float* rows[kLaneCount];
-  for (int i = 0; i < kLaneCount; ++i)
+  memory[399] = -kInf;
+  const float* rows[kRows];
+  for (std::size_t i = 0; i < kRows; ++i)
     rows[i] = memory.data() + starts[i];
-  FloatLanes columns[kLaneCount];
+  glint::Float<int(kRows)> columns[kLaneCount];
   glint::load_columns(rows, columns);
   for (int j = 0; j < kLaneCount; ++j)
-    for (int i = 0; i < kLaneCount; ++i) {
+    for (std::size_t i = 0; i < kRows; ++i) {
       INFO("column " << j << ", lane " << i);
       CHECK(same_bits(columns[j][i], memory[starts[i] + std::size_t(j)]));
     }
+}
+
+}  // namespace
+
+TEST_CASE("load_columns turns eight rows of eight floats, anywhere in memory, into columns",
+          "[lanes][unit]") {
+  // Rows scattered through the array, in no order and one of them twice.
+  check_load_columns<kLaneCount>({40, 3, 120, 17, 40, 77, 91, 392});
+#if defined(GLINT_AVX512)
+  // Sixteen rows, those of the two halves of a register from unrelated places, so that a
+  // piece taken from the wrong half or the wrong row shows.
+  check_load_columns<2 * kLaneCount>(
+      {40, 3, 120, 17, 40, 77, 91, 150, 215, 300, 8, 392, 181, 260, 14, 121});
+#endif
 }
 
 TEST_CASE(

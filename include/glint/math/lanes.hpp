@@ -51,6 +51,55 @@ inline void load_columns(const float* const (&rows)[kLaneCount],
   }
 }
 
+/// The most rows load_columns transposes at once: eight, sixteen with AVX-512.
+#if defined(GLINT_AVX512)
+inline constexpr int kMaxColumnRows = 2 * kLaneCount;
+#else
+inline constexpr int kMaxColumnRows = kLaneCount;
+#endif
+
+#if defined(GLINT_AVX512)
+/// load_columns for sixteen rows, into sixteen lanes: column j holds rows[i][j] in lane i. Rows
+/// i and i + 8 share a 512-bit register, one in each half, so that one transpose of eight such
+/// registers transposes both halves at once (its in-lane shuffles act on every 128 bits; the
+/// last step's exchange of 128-bit pieces becomes a two-source permutation): sixteen loads and
+/// 24 shuffles, where two transposes of eight and the joining of their columns take 48 and
+/// eight more.
+inline void load_columns(const float* const (&rows)[2 * kLaneCount],
+                         Float<2 * kLaneCount> (&columns)[kLaneCount]) {
+  __m512 r[kLaneCount];
+  for (int i = 0; i < kLaneCount; ++i)
+    r[i] = _mm512_insertf32x8(_mm512_castps256_ps512(_mm256_loadu_ps(rows[i])),
+                              _mm256_loadu_ps(rows[i + kLaneCount]), 1);
+  __m512 pair[kLaneCount], quad[kLaneCount];
+  // (The masked forms with every lane set are the plain instructions; GCC 12's plain
+  // intrinsics start from an undefined register, which -Wmaybe-uninitialized reports.)
+  constexpr __mmask16 kAll = 0xffff;
+  for (int i = 0; i < kLaneCount; i += 2) {
+    pair[i] = _mm512_mask_unpacklo_ps(r[i], kAll, r[i], r[i + 1]);
+    pair[i + 1] = _mm512_mask_unpackhi_ps(r[i], kAll, r[i], r[i + 1]);
+  }
+  for (int i = 0; i < kLaneCount; i += 4) {
+    quad[i] = _mm512_shuffle_ps(pair[i], pair[i + 2], _MM_SHUFFLE(1, 0, 1, 0));
+    quad[i + 1] = _mm512_shuffle_ps(pair[i], pair[i + 2], _MM_SHUFFLE(3, 2, 3, 2));
+    quad[i + 2] = _mm512_shuffle_ps(pair[i + 1], pair[i + 3], _MM_SHUFFLE(1, 0, 1, 0));
+    quad[i + 3] = _mm512_shuffle_ps(pair[i + 1], pair[i + 3], _MM_SHUFFLE(3, 2, 3, 2));
+  }
+  // The 128-bit pieces 0 and 2 (1 and 3) of quad[j] and quad[j + 4], alternately: in each half,
+  // the low (high) pieces of the two, as _mm256_permute2f128_ps does for eight lanes.
+  const __m512i low_pieces =
+      _mm512_setr_epi32(0, 1, 2, 3, 16, 17, 18, 19, 8, 9, 10, 11, 24, 25, 26, 27);
+  const __m512i high_pieces =
+      _mm512_setr_epi32(4, 5, 6, 7, 20, 21, 22, 23, 12, 13, 14, 15, 28, 29, 30, 31);
+  for (int j = 0; j < 4; ++j) {
+    columns[j] = std::bit_cast<Float<2 * kLaneCount>>(
+        _mm512_permutex2var_ps(quad[j], low_pieces, quad[j + 4]));
+    columns[j + 4] = std::bit_cast<Float<2 * kLaneCount>>(
+        _mm512_permutex2var_ps(quad[j], high_pieces, quad[j + 4]));
+  }
+}
+#endif
+
 /// Lane j of the result is lane order[j] of `v` (order's lanes in 0 .. 7).
 inline FloatLanes permute(FloatLanes v, IntLanes order) {
   return std::bit_cast<FloatLanes>(_mm256_permutevar8x32_ps(__m256(v), __m256i(order)));

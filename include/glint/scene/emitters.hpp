@@ -229,22 +229,22 @@ class EmitterTable {
       const SphereEmitter& e = emitters_[std::size_t(index)];
       chosen = {e.center, e.radius, e.radiance, e.sphere, probability_[std::size_t(index)]};
 #if defined(GLINT_AVX2)
-    } else if constexpr (kLanesOf<F> == kLaneCount) {
+    } else if constexpr (kLanesOf<F> == kLaneCount || kLanesOf<F> == kMaxColumnRows) {
       // The chosen emitters' eight words (centre, radius, radiance, sphere) as one transpose.
       static_assert(offsetof(SphereEmitter, center) == 0 && offsetof(SphereEmitter, radius) == 12 &&
                     offsetof(SphereEmitter, radiance) == 16 &&
                     offsetof(SphereEmitter, sphere) == 28 && sizeof(SphereEmitter) == 32);
-      const float* records[kLaneCount];
-      for (int i = 0; i < kLaneCount; ++i) {
+      const float* records[kLanesOf<F>];
+      for (int i = 0; i < kLanesOf<F>; ++i) {
         records[i] = reinterpret_cast<const float*>(&emitters_[std::size_t(index[i])]);
         chosen.probability[i] = probability_[std::size_t(index[i])];
       }
-      FloatLanes words[kLaneCount];
+      F words[kLaneCount];
       load_columns(records, words);
       chosen.center = {words[0], words[1], words[2]};
       chosen.radius = words[3];
       chosen.radiance = {words[4], words[5], words[6]};
-      chosen.sphere = std::bit_cast<UintLanes>(words[7]);
+      chosen.sphere = std::bit_cast<UIntFor<F>>(words[7]);
     } else if constexpr (kLanesOf<F> == 2 * kLaneCount) {
       // Two transposes of eight.
       const EmitterLanes<FloatLanes> low = choose_lanes(low_half(u));

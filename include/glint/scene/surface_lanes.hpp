@@ -70,12 +70,12 @@ SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F
   if constexpr (W == 1) {
     if (lanes) detail::set_surface_lane(s, 0, scene.surface(sphere));
 #if defined(GLINT_AVX2)
-  } else if constexpr (W == kLaneCount) {
+  } else if constexpr (W == kLaneCount || W == kMaxColumnRows) {
     // The 88 bytes of SurfaceProperties, read as 22 words: the material's seventeen floats, the
     // centre, ior_outside, a word whose two low bytes are the shading kind and
     // fully_transparent (and whose two high bytes are padding), and the emitter's index. They
-    // are loaded in three blocks of eight consecutive words (the last two overlapping) for the
-    // eight lanes at once, transposed in registers.
+    // are loaded in three blocks of eight consecutive words (the last two overlapping) for all
+    // the lanes at once, transposed in registers.
     constexpr int kRecordWords = 22;
     static_assert(offsetof(SurfaceProperties, material) == 0 && offsetof(Material, diffuse) == 0 &&
                   offsetof(Material, diffuse_color) == 4 && offsetof(Material, mirror) == 16 &&
@@ -88,13 +88,13 @@ SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F
                   offsetof(SurfaceProperties, emitter) == 84 &&
                   sizeof(SurfaceProperties) == kRecordWords * sizeof(float));
     static constexpr float kNoSurface[kRecordWords] = {};
-    const float* record[kLaneCount];
-    for (int i = 0; i < kLaneCount; ++i)
+    const float* record[W];
+    for (int i = 0; i < W; ++i)
       record[i] = lanes[i] ? reinterpret_cast<const float*>(&scene.surface(sphere[i])) : kNoSurface;
-    FloatLanes first[kLaneCount], second[kLaneCount], last[kLaneCount];
-    const auto load_block = [&](int offset, FloatLanes(&columns)[kLaneCount]) {
-      const float* rows[kLaneCount];
-      for (int i = 0; i < kLaneCount; ++i)
+    F first[kLaneCount], second[kLaneCount], last[kLaneCount];
+    const auto load_block = [&](int offset, F(&columns)[kLaneCount]) {
+      const float* rows[W];
+      for (int i = 0; i < W; ++i)
         rows[i] = record[i] + offset;
       load_columns(rows, columns);
     };
@@ -111,10 +111,10 @@ SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F
     s.emission = {second[5], second[6], second[7]};
     s.center = {last[2], last[3], last[4]};
     s.ior_outside = last[5];
-    const auto flags = std::bit_cast<IntLanes>(last[6]);
+    const auto flags = std::bit_cast<IntFor<F>>(last[6]);
     s.shading = flags & 0xff;
     s.fully_transparent = (flags & 0xff00) != 0;
-    s.emitter = select(lanes, std::bit_cast<UintLanes>(last[7]), UintLanes{} + kNotAnEmitter);
+    s.emitter = select(lanes, std::bit_cast<UIntFor<F>>(last[7]), splat<UIntFor<F>>(kNotAnEmitter));
   } else if constexpr (W == 2 * kLaneCount) {
     // Two transposes of eight.
     const SurfaceLanes<FloatLanes> low =
