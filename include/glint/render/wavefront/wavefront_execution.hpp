@@ -129,15 +129,44 @@ struct PieceLayout {
   std::uint32_t index(std::uint64_t n) const {
     return std::uint32_t(std::uint64_t(first) + n % per_pixel);
   }
+
+  /// Sample `n`'s pixel and its place among the pixel's samples, which step to those of n + 1
+  /// without the divisions of x(), y() and index(): a stage's samples are mostly consecutive.
+  struct Place {
+    std::uint64_t n;
+    int x, y;
+    std::uint64_t in_pixel;  ///< n % per_pixel
+  };
+  Place place(std::uint64_t n) const {
+    const std::uint64_t pixel = n / per_pixel;
+    const auto width = std::uint64_t(tile.width());
+    return {n, tile.x0 + int(pixel % width), tile.y0 + int(pixel / width), n % per_pixel};
+  }
+  /// place(n), from `last` = place(m) without a division if n is m or m + 1.
+  Place place(std::uint64_t n, const Place& last) const {
+    if (n == last.n) return last;
+    if (n != last.n + 1) return place(n);
+    Place next = last;
+    next.n = n;
+    if (++next.in_pixel < per_pixel) return next;
+    next.in_pixel = 0;
+    if (++next.x < tile.x1) return next;
+    next.x = tile.x0;
+    ++next.y;
+    return next;
+  }
+
   /// The PixelSamples of samples n[0] .. n[W-1], lane by lane.
   template <int W>
   PixelSamples<W> samples(const std::uint64_t* n, std::uint32_t samples_per_pixel,
                           std::uint64_t seed) const {
     std::uint32_t xs[W], ys[W], indices[W];
+    Place at = place(n[0]);
     for (int i = 0; i < W; ++i) {
-      xs[i] = std::uint32_t(x(n[i]));
-      ys[i] = std::uint32_t(y(n[i]));
-      indices[i] = index(n[i]);
+      at = place(n[i], at);
+      xs[i] = std::uint32_t(at.x);
+      ys[i] = std::uint32_t(at.y);
+      indices[i] = std::uint32_t(std::uint64_t(first) + at.in_pixel);
     }
     return {load<UInt<W>>(xs), load<UInt<W>>(ys), load<UInt<W>>(indices), samples_per_pixel, seed};
   }
@@ -887,13 +916,16 @@ class WavefrontExecution {
   GLINT_STAGE static std::uint64_t add_finished(ThreadState& state, const PieceLayout& piece,
                                                 std::uint64_t summed, std::uint64_t started,
                                                 PixelSums& sums, TraceCounters& counters) {
+    if (summed >= started) return summed;
+    PieceLayout::Place at = piece.place(summed);
     for (; summed < started; ++summed) {
       const auto slot = std::size_t(summed % std::uint64_t(kWindow));
       if (!state.result_ready[slot]) break;
       state.result_ready[slot] = 0;
+      at = piece.place(summed, at);
       const Color& sample = state.results[slot];
       if (std::isfinite(sample.x) && std::isfinite(sample.y) && std::isfinite(sample.z))
-        sums.at(piece.x(summed), piece.y(summed)) += ColorSum(sample);
+        sums.at(at.x, at.y) += ColorSum(sample);
       else
         ++counters.invalid_samples;
     }
