@@ -21,7 +21,7 @@
 //
 //   GLINT_AVX2    8-wide AVX2 + FMA kernels (SphereSet, WallSet, the BVH's nodes, ...)
 //   GLINT_AVX512  16-wide AVX-512 forms of the batched ray queries (x86-64-v4: F, VL, BW, DQ)
-//   GLINT_SSE41   4-wide SSE4.1 kernels (the BVH's box test)
+//   GLINT_SSE41   4-wide SSE4.1 code (the BVH build's binning)
 //
 // Each is defined when the compiler targets that instruction set (e.g. -march=native) and
 // GLINT_NO_SIMD is not defined. The shading's lanes (math/wide.hpp) follow the compiler's

@@ -47,6 +47,7 @@ inline LaneMask traverse_packet(const std::vector<WideNode>& nodes, const RayBat
   const __m256 ix = _mm256_div_ps(one, _mm256_load_ps(rays.direction_x)),
                iy = _mm256_div_ps(one, _mm256_load_ps(rays.direction_y)),
                iz = _mm256_div_ps(one, _mm256_load_ps(rays.direction_z));
+  const SlabRayLanes<avx2::Lanes8> rays_inverse{ox, oy, oz, ix, iy, iz};
   const __m256 t_min = _mm256_load_ps(rays.t_min);
   const __m256 infinity = _mm256_set1_ps(kInfinity);
   // Each lane's best t, the far bound of its box tests; lanes without a ray never enter.
@@ -80,17 +81,13 @@ inline LaneMask traverse_packet(const std::vector<WideNode>& nodes, const RayBat
     int count = 0;
     for (int c = 0; c < kWideWidth; ++c) {
       if (node.child[c] == kEmptySlot) continue;
-      const __m256 ax = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(node.lower_x[c]), ox), ix);
-      const __m256 bx = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(node.upper_x[c]), ox), ix);
-      const __m256 ay = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(node.lower_y[c]), oy), iy);
-      const __m256 by = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(node.upper_y[c]), oy), iy);
-      const __m256 az = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(node.lower_z[c]), oz), iz);
-      const __m256 bz = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(node.upper_z[c]), oz), iz);
-      const __m256 near = _mm256_max_ps(_mm256_max_ps(_mm256_min_ps(ax, bx), _mm256_min_ps(ay, by)),
-                                        _mm256_max_ps(_mm256_min_ps(az, bz), t_min));
-      const __m256 far = _mm256_min_ps(_mm256_min_ps(_mm256_max_ps(ax, bx), _mm256_max_ps(ay, by)),
-                                       _mm256_min_ps(_mm256_max_ps(az, bz), nearest_t));
-      const __m256 enters = _mm256_and_ps(_mm256_cmp_ps(near, far, _CMP_LE_OQ), lane_ok);
+      using L = avx2::Lanes8;
+      const BoxLanes<L> box{L::splat(node.lower_x[c]), L::splat(node.lower_y[c]),
+                            L::splat(node.lower_z[c]), L::splat(node.upper_x[c]),
+                            L::splat(node.upper_y[c]), L::splat(node.upper_z[c])};
+      const SlabInterval<L> inside = slab_interval(rays_inverse, box, t_min, nearest_t);
+      const __m256 near = inside.near;
+      const __m256 enters = _mm256_and_ps(L::less_equal(near, inside.far), lane_ok);
       if (_mm256_movemask_ps(enters) == 0) continue;
       const __m256 entry = _mm256_blendv_ps(infinity, near, enters);
       // The nearest entry among the lanes orders the children.

@@ -35,6 +35,41 @@ concept LaneLeafTest = requires(F& test_leaf, int lane, std::uint32_t first, std
   { test_leaf(lane, first, count, best) } -> std::same_as<bool>;
 };
 
+/// Axis-aligned boxes, one per lane of L's registers (geometry/simd.hpp).
+template <class L>
+struct BoxLanes {
+  typename L::F lower_x, lower_y, lower_z, upper_x, upper_y, upper_z;
+};
+
+/// A ray's origin and the reciprocals of its direction's components, per lane.
+template <class L>
+struct SlabRayLanes {
+  typename L::F ox, oy, oz, inverse_x, inverse_y, inverse_z;
+};
+
+template <class L>
+struct SlabInterval {
+  typename L::F near, far;
+};
+
+/// The slab test, lane by lane: the interval of t in which the lane's ray is inside the lane's
+/// box, clipped to [t_min, t_max]; the ray enters the box where near <= far (NaN: not). Written
+/// once for one ray and one box (Lanes1), one ray and the eight boxes of a node, and eight rays
+/// and one box.
+template <class L>
+inline SlabInterval<L> slab_interval(const SlabRayLanes<L>& ray, const BoxLanes<L>& box,
+                                     typename L::F t_min, typename L::F t_max) {
+  using F = typename L::F;
+  const F ax = L::mul(L::sub(box.lower_x, ray.ox), ray.inverse_x);
+  const F bx = L::mul(L::sub(box.upper_x, ray.ox), ray.inverse_x);
+  const F ay = L::mul(L::sub(box.lower_y, ray.oy), ray.inverse_y);
+  const F by = L::mul(L::sub(box.upper_y, ray.oy), ray.inverse_y);
+  const F az = L::mul(L::sub(box.lower_z, ray.oz), ray.inverse_z);
+  const F bz = L::mul(L::sub(box.upper_z, ray.oz), ray.inverse_z);
+  return {L::max(L::max(L::min(ax, bx), L::min(ay, by)), L::max(L::min(az, bz), t_min)),
+          L::min(L::min(L::max(ax, bx), L::max(ay, by)), L::min(L::max(az, bz), t_max))};
+}
+
 /// The slots of a wide node that a ray enters (bit c for slot c), split by kind.
 struct EnteredSlots {
   unsigned leaves = 0;
@@ -49,66 +84,33 @@ inline EnteredSlots enter_boxes(const WideNode& node, const Vec3& origin,
   static_assert(kWideWidth == 8);
   unsigned entered = 0, empty = 0, leaves = 0;
 #if defined(GLINT_AVX2)
-  const __m256 ox = _mm256_set1_ps(origin.x), oy = _mm256_set1_ps(origin.y),
-               oz = _mm256_set1_ps(origin.z);
-  const __m256 ix = _mm256_set1_ps(inverse_direction.x), iy = _mm256_set1_ps(inverse_direction.y),
-               iz = _mm256_set1_ps(inverse_direction.z);
-  const __m256 ax = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.lower_x), ox), ix);
-  const __m256 bx = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.upper_x), ox), ix);
-  const __m256 ay = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.lower_y), oy), iy);
-  const __m256 by = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.upper_y), oy), iy);
-  const __m256 az = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.lower_z), oz), iz);
-  const __m256 bz = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.upper_z), oz), iz);
-  const __m256 near = _mm256_max_ps(_mm256_max_ps(_mm256_min_ps(ax, bx), _mm256_min_ps(ay, by)),
-                                    _mm256_max_ps(_mm256_min_ps(az, bz), _mm256_set1_ps(t_min)));
-  const __m256 far = _mm256_min_ps(_mm256_min_ps(_mm256_max_ps(ax, bx), _mm256_max_ps(ay, by)),
-                                   _mm256_min_ps(_mm256_max_ps(az, bz), _mm256_set1_ps(t_max)));
-  _mm256_storeu_ps(enter, near);
-  entered = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(near, far, _CMP_LE_OQ)));
+  using L = avx2::Lanes8;
+  const SlabRayLanes<L> ray{L::splat(origin.x),
+                            L::splat(origin.y),
+                            L::splat(origin.z),
+                            L::splat(inverse_direction.x),
+                            L::splat(inverse_direction.y),
+                            L::splat(inverse_direction.z)};
+  const BoxLanes<L> boxes{L::load(node.lower_x), L::load(node.lower_y), L::load(node.lower_z),
+                          L::load(node.upper_x), L::load(node.upper_y), L::load(node.upper_z)};
+  const SlabInterval<L> inside = slab_interval(ray, boxes, L::splat(t_min), L::splat(t_max));
+  _mm256_storeu_ps(enter, inside.near);
+  entered = L::bits(L::less_equal(inside.near, inside.far));
   const __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
   const __m256i count = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.count));
   empty = unsigned(
       _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(child, _mm256_set1_epi32(-1)))));
   leaves = unsigned(
       _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(count, _mm256_setzero_si256()))));
-#elif defined(GLINT_SSE41)
-  for (int half = 0; half < kWideWidth; half += 4) {
-    const __m128 ox = _mm_set1_ps(origin.x), oy = _mm_set1_ps(origin.y), oz = _mm_set1_ps(origin.z);
-    const __m128 ix = _mm_set1_ps(inverse_direction.x), iy = _mm_set1_ps(inverse_direction.y),
-                 iz = _mm_set1_ps(inverse_direction.z);
-    const __m128 ax = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_x + half), ox), ix);
-    const __m128 bx = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_x + half), ox), ix);
-    const __m128 ay = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_y + half), oy), iy);
-    const __m128 by = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_y + half), oy), iy);
-    const __m128 az = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lower_z + half), oz), iz);
-    const __m128 bz = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.upper_z + half), oz), iz);
-    const __m128 near = _mm_max_ps(_mm_max_ps(_mm_min_ps(ax, bx), _mm_min_ps(ay, by)),
-                                   _mm_max_ps(_mm_min_ps(az, bz), _mm_set1_ps(t_min)));
-    const __m128 far = _mm_min_ps(_mm_min_ps(_mm_max_ps(ax, bx), _mm_max_ps(ay, by)),
-                                  _mm_min_ps(_mm_max_ps(az, bz), _mm_set1_ps(t_max)));
-    _mm_storeu_ps(enter + half, near);
-    entered |= unsigned(_mm_movemask_ps(_mm_cmple_ps(near, far))) << half;
-    const __m128i child = _mm_load_si128(reinterpret_cast<const __m128i*>(node.child + half));
-    const __m128i count = _mm_load_si128(reinterpret_cast<const __m128i*>(node.count + half));
-    empty |= unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(child, _mm_set1_epi32(-1)))))
-             << half;
-    leaves |=
-        unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(count, _mm_setzero_si128()))))
-        << half;
-  }
 #else
+  const SlabRayLanes<Lanes1> ray{
+      origin.x, origin.y, origin.z, inverse_direction.x, inverse_direction.y, inverse_direction.z};
   for (int c = 0; c < kWideWidth; ++c) {
-    const float ax = (node.lower_x[c] - origin.x) * inverse_direction.x;
-    const float bx = (node.upper_x[c] - origin.x) * inverse_direction.x;
-    const float ay = (node.lower_y[c] - origin.y) * inverse_direction.y;
-    const float by = (node.upper_y[c] - origin.y) * inverse_direction.y;
-    const float az = (node.lower_z[c] - origin.z) * inverse_direction.z;
-    const float bz = (node.upper_z[c] - origin.z) * inverse_direction.z;
-    const float near =
-        max_of(max_of(min_of(ax, bx), min_of(ay, by)), max_of(min_of(az, bz), t_min));
-    const float far = min_of(min_of(max_of(ax, bx), max_of(ay, by)), min_of(max_of(az, bz), t_max));
-    enter[c] = near;
-    entered |= unsigned(near <= far) << c;
+    const BoxLanes<Lanes1> box{node.lower_x[c], node.lower_y[c], node.lower_z[c],
+                               node.upper_x[c], node.upper_y[c], node.upper_z[c]};
+    const SlabInterval<Lanes1> inside = slab_interval(ray, box, t_min, t_max);
+    enter[c] = inside.near;
+    entered |= unsigned(inside.near <= inside.far) << c;
     empty |= unsigned(node.child[c] == kEmptySlot) << c;
     leaves |= unsigned(node.count[c] > 0) << c;
   }
