@@ -48,18 +48,29 @@ class LightBuffer {
   /// The cell of direction `w` (not zero): the face of its largest coordinate in magnitude
   /// (x, y, z: faces 0-1, 2-3, 4-5, the second for a negative one, the first on ties), and
   /// on it the square of the other two coordinates divided by that one. NaN goes to cell 0.
-  static int cell_of(const Vec3& w) {
-    const float ax = std::abs(w.x), ay = std::abs(w.y), az = std::abs(w.z);
-    int axis = 2;
-    if (ax >= ay && ax >= az)
-      axis = 0;
-    else if (ay >= az)
-      axis = 1;
-    const float major = w[axis];
-    const float u = w[(axis + 1) % 3] / std::abs(major);
-    const float v = w[(axis + 2) % 3] / std::abs(major);
-    const int face = 2 * axis + (major < 0.0f ? 1 : 0);
-    return (face * kCellsPerEdge + square_index(u)) * kCellsPerEdge + square_index(v);
+  static int cell_of(const Vec3& w) { return cell_lanes<Lanes1>(w.x, w.y, w.z); }
+
+  /// cell_of for the direction (x, y, z) of each lane, in registers of L (simd.hpp).
+  template <class L>
+  static typename L::I cell_lanes(typename L::F x, typename L::F y, typename L::F z) {
+    using F = typename L::F;
+    using I = typename L::I;
+    using M = typename L::M;
+    const F ax = L::abs(x), ay = L::abs(y), az = L::abs(z);
+    const M x_major = L::both(L::greater_equal(ax, ay), L::greater_equal(ax, az));
+    const M y_major = L::and_not(L::greater_equal(ay, az), x_major);
+    // The major coordinate and the two after it, cyclically: (x; y, z), (y; z, x), (z; x, y).
+    const F major = L::select(x_major, x, L::select(y_major, y, z));
+    const F first = L::select(x_major, y, L::select(y_major, z, x));
+    const F second = L::select(x_major, z, L::select(y_major, x, y));
+    const F major_size = L::abs(major);
+    const I axis_face =
+        L::select(x_major, L::splat(0), L::select(y_major, L::splat(2), L::splat(4)));
+    const I face = L::add(axis_face, L::keep(L::less(major, L::zero()), L::splat(1)));
+    const I u = square_index<L>(L::div(first, major_size));
+    const I v = square_index<L>(L::div(second, major_size));
+    const I edge = L::splat(kCellsPerEdge);
+    return L::add(L::mul(L::add(L::mul(face, edge), u), edge), v);
   }
 
   LightBuffer() = default;
@@ -159,30 +170,8 @@ class LightBuffer {
 
   /// cell_of(-direction) in each lane: the cell of the way back from the light to the origin.
   static __m256i cells(const avx2::RayLanes& rays) {
-    const __m256 sign = _mm256_set1_ps(-0.0f);
-    const __m256 wx = _mm256_xor_ps(rays.dx, sign), wy = _mm256_xor_ps(rays.dy, sign),
-                 wz = _mm256_xor_ps(rays.dz, sign);
-    const __m256 ax = _mm256_andnot_ps(sign, wx), ay = _mm256_andnot_ps(sign, wy),
-                 az = _mm256_andnot_ps(sign, wz);
-    const __m256 x_major =
-        _mm256_and_ps(_mm256_cmp_ps(ax, ay, _CMP_GE_OQ), _mm256_cmp_ps(ax, az, _CMP_GE_OQ));
-    const __m256 y_major = _mm256_andnot_ps(x_major, _mm256_cmp_ps(ay, az, _CMP_GE_OQ));
-    // The major coordinate and the two after it, cyclically: (x; y, z), (y; z, x), (z; x, y).
-    const __m256 major = _mm256_blendv_ps(_mm256_blendv_ps(wz, wy, y_major), wx, x_major);
-    const __m256 first = _mm256_blendv_ps(_mm256_blendv_ps(wx, wz, y_major), wy, x_major);
-    const __m256 second = _mm256_blendv_ps(_mm256_blendv_ps(wy, wx, y_major), wz, x_major);
-    const __m256 major_size = _mm256_andnot_ps(sign, major);
-    const __m256i face = _mm256_add_epi32(
-        _mm256_blendv_epi8(_mm256_blendv_epi8(_mm256_set1_epi32(4), _mm256_set1_epi32(2),
-                                              _mm256_castps_si256(y_major)),
-                           _mm256_setzero_si256(), _mm256_castps_si256(x_major)),
-        _mm256_srli_epi32(
-            _mm256_castps_si256(_mm256_cmp_ps(major, _mm256_setzero_ps(), _CMP_LT_OQ)), 31));
-    const __m256i u = square_indices(_mm256_div_ps(first, major_size));
-    const __m256i v = square_indices(_mm256_div_ps(second, major_size));
-    const __m256i edge = _mm256_set1_epi32(kCellsPerEdge);
-    return _mm256_add_epi32(
-        _mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(face, edge), u), edge), v);
+    using L = avx2::Lanes8;
+    return cell_lanes<L>(L::negate(rays.dx), L::negate(rays.dy), L::negate(rays.dz));
   }
 
   /// Whether a sphere of the buffer blocks `ray` (one that ends here, in cell `cell`): exactly
@@ -282,18 +271,13 @@ class LightBuffer {
     return cones;
   }
 
-  static int square_index(float coordinate) {
-    const float scaled = (coordinate + 1.0f) * (0.5f * kCellsPerEdge);
-    if (!(scaled > 0.0f)) return 0;
-    return std::min(kCellsPerEdge - 1, int(scaled));
-  }
-  static __m256i square_indices(__m256 coordinate) {
-    const __m256 scaled = _mm256_mul_ps(_mm256_add_ps(coordinate, _mm256_set1_ps(1.0f)),
-                                        _mm256_set1_ps(0.5f * kCellsPerEdge));
-    // max first: NaN becomes 0, as in square_index.
-    const __m256 clamped = _mm256_min_ps(_mm256_max_ps(scaled, _mm256_setzero_ps()),
-                                         _mm256_set1_ps(float(kCellsPerEdge - 1)));
-    return _mm256_cvttps_epi32(clamped);
+  /// The row or column of a face's cells at a coordinate in [-1, 1] of it, in each lane; NaN
+  /// goes to 0 (the maximum is taken first, and gives its second operand for NaN).
+  template <class L>
+  static typename L::I square_index(typename L::F coordinate) {
+    const typename L::F scaled =
+        L::mul(L::add(coordinate, L::splat(1.0f)), L::splat(0.5f * kCellsPerEdge));
+    return L::truncate(L::min(L::max(scaled, L::zero()), L::splat(float(kCellsPerEdge - 1))));
   }
 
   /// Orders spheres by face, then along a Z-order curve of the face's cells.

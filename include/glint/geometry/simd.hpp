@@ -50,6 +50,10 @@ struct Lanes1 {
   static F fmadd(F a, F b, F c) { return std::fma(a, b, c); }
   static F fnmadd(F a, F b, F c) { return std::fma(-a, b, c); }
   static F fmsub(F a, F b, F c) { return std::fma(a, b, -c); }
+  static I add(I a, I b) { return a + b; }
+  static I mul(I a, I b) { return a * b; }
+  /// Toward zero, as cvttps2dq (for values an int32_t holds).
+  static I truncate(F a) { return static_cast<I>(a); }
   static F with_sign_of(F magnitude, F sign) { return std::copysign(magnitude, sign); }
   static F negate(F a) { return -a; }
   static F abs(F a) { return std::fabs(a); }
@@ -124,6 +128,9 @@ struct Lanes8 {
   static F fmadd(F a, F b, F c) { return _mm256_fmadd_ps(a, b, c); }    ///< a b + c
   static F fnmadd(F a, F b, F c) { return _mm256_fnmadd_ps(a, b, c); }  ///< c - a b
   static F fmsub(F a, F b, F c) { return _mm256_fmsub_ps(a, b, c); }    ///< a b - c
+  static I add(I a, I b) { return _mm256_add_epi32(a, b); }
+  static I mul(I a, I b) { return _mm256_mullo_epi32(a, b); }  ///< the low 32 bits
+  static I truncate(F a) { return _mm256_cvttps_epi32(a); }
   /// The sign bit of `sign`'s lanes on `magnitude`'s (which are +0 or more).
   static F with_sign_of(F magnitude, F sign) {
     return _mm256_or_ps(magnitude, _mm256_and_ps(sign, _mm256_set1_ps(-0.0f)));
@@ -202,6 +209,9 @@ struct Lanes16 {
   static F fmadd(F a, F b, F c) { return _mm512_fmadd_ps(a, b, c); }
   static F fnmadd(F a, F b, F c) { return _mm512_fnmadd_ps(a, b, c); }
   static F fmsub(F a, F b, F c) { return _mm512_fmsub_ps(a, b, c); }
+  static I add(I a, I b) { return _mm512_add_epi32(a, b); }
+  static I mul(I a, I b) { return _mm512_mullo_epi32(a, b); }
+  static I truncate(F a) { return _mm512_maskz_cvttps_epi32(M(kAllLanes), a); }
   static F with_sign_of(F magnitude, F sign) {
     return _mm512_or_ps(magnitude, _mm512_and_ps(sign, _mm512_set1_ps(-0.0f)));
   }
