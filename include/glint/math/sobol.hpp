@@ -26,60 +26,55 @@ namespace detail {
 // Bit reversal in SIMD registers by byte shuffles: each word's bytes in reverse order, then each
 // byte's bits by two lookups in sixteen-entry tables, one per nibble (the byte with nibbles h, l
 // reversed is rev(l), rev(h)). Seven instructions instead of the arithmetic form's twenty, for
-// the same words. The tables are given as the two 64-bit halves of a 16-byte table (byte 0 is
-// the low byte), repeated in every 128-bit lane, the reach of a byte shuffle.
-inline constexpr std::uint64_t kByteReversal[2] = {0x0405060700010203u, 0x0c0d0e0f08090a0bu};
-inline constexpr std::uint64_t kLowNibbleReversed[2] = {0xe060a020c0408000u, 0xf070b030d0509010u};
-inline constexpr std::uint64_t kHighNibbleReversed[2] = {0x0e060a020c040800u, 0x0f070b030d050901u};
+// the same words. A table is sixteen bytes as four words (byte 0 the low byte of word 0),
+// repeated in every 128-bit lane, the reach of a byte shuffle.
+inline constexpr std::uint32_t kByteReversal[4] = {0x00010203u, 0x04050607u, 0x08090a0bu,
+                                                   0x0c0d0e0fu};
+inline constexpr std::uint32_t kLowNibbleReversed[4] = {0xc0408000u, 0xe060a020u, 0xd0509010u,
+                                                        0xf070b030u};
+inline constexpr std::uint32_t kHighNibbleReversed[4] = {0x0c040800u, 0x0e060a02u, 0x0d050901u,
+                                                         0x0f070b03u};
 
+/// Byte i of each 128-bit lane of the result is byte index[i] (0 .. 15) of that lane of `table`.
 #if defined(GLINT_AVX2)
-inline __m256i lane_table_256(const std::uint64_t (&table)[2]) {
-  const auto low = static_cast<long long>(table[0]);
-  const auto high = static_cast<long long>(table[1]);
-  return _mm256_setr_epi64x(low, high, low, high);
-}
-
-inline UInt<8> reverse_bits_by_bytes(UInt<8> v) {
-  const __m256i nibble = _mm256_set1_epi8(0x0f);
-  const __m256i bytes = _mm256_shuffle_epi8(__m256i(v), lane_table_256(kByteReversal));
-  const __m256i low = _mm256_and_si256(bytes, nibble);
-  const __m256i high = _mm256_and_si256(_mm256_srli_epi16(bytes, 4), nibble);
-  return UInt<8>(_mm256_or_si256(_mm256_shuffle_epi8(lane_table_256(kLowNibbleReversed), low),
-                                 _mm256_shuffle_epi8(lane_table_256(kHighNibbleReversed), high)));
+inline UInt<8> shuffle_bytes(UInt<8> table, UInt<8> index) {
+  return UInt<8>(_mm256_shuffle_epi8(__m256i(table), __m256i(index)));
 }
 #endif
-
 #if defined(GLINT_AVX512)
-inline __m512i lane_table_512(const std::uint64_t (&table)[2]) {
-  const auto low = static_cast<long long>(table[0]);
-  const auto high = static_cast<long long>(table[1]);
-  return _mm512_set_epi64(high, low, high, low, high, low, high, low);
-}
-
-inline UInt<16> reverse_bits_by_bytes(UInt<16> v) {
-  const __m512i nibble = _mm512_set1_epi8(0x0f);
-  const __m512i bytes = _mm512_shuffle_epi8(__m512i(v), lane_table_512(kByteReversal));
-  const __m512i low = _mm512_and_si512(bytes, nibble);
-  const __m512i high = _mm512_and_si512(_mm512_srli_epi16(bytes, 4), nibble);
-  return UInt<16>(_mm512_or_si512(_mm512_shuffle_epi8(lane_table_512(kLowNibbleReversed), low),
-                                  _mm512_shuffle_epi8(lane_table_512(kHighNibbleReversed), high)));
+inline UInt<16> shuffle_bytes(UInt<16> table, UInt<16> index) {
+  return UInt<16>(_mm512_shuffle_epi8(__m512i(table), __m512i(index)));
 }
 #endif
+
+/// Whether words in lanes of U can be bit-reversed by byte shuffles in this build.
+template <typename U>
+inline constexpr bool kShufflesBytes = requires(U u) {
+  shuffle_bytes(u, u);
+};
+
+template <typename U>
+U lane_table(const std::uint32_t (&words)[4]) {
+  U table{};
+  for (int i = 0; i < kLanesOf<U>; ++i)
+    table[i] = words[i % 4];
+  return table;
+}
+
+template <typename U>
+U reverse_bits_by_bytes(U v) {
+  const U bytes = shuffle_bytes(v, lane_table<U>(kByteReversal));
+  return shuffle_bytes(lane_table<U>(kLowNibbleReversed), bytes & 0x0f0f0f0fu) |
+         shuffle_bytes(lane_table<U>(kHighNibbleReversed), (bytes >> 4) & 0x0f0f0f0fu);
+}
 
 /// Bit reversal: turns a binary fraction's digits (most significant first) into an integer's
 /// (least significant first) and back.
 template <Words32 U>
 constexpr U reverse_bits(U v) {
-#if defined(GLINT_AVX2)
-  if constexpr (std::same_as<U, UInt<8>>) {
+  if constexpr (kShufflesBytes<U>) {
     if (!std::is_constant_evaluated()) return reverse_bits_by_bytes(v);
   }
-#endif
-#if defined(GLINT_AVX512)
-  if constexpr (std::same_as<U, UInt<16>>) {
-    if (!std::is_constant_evaluated()) return reverse_bits_by_bytes(v);
-  }
-#endif
   v = (v << 16) | (v >> 16);
   v = ((v & 0x00ff00ffu) << 8) | ((v >> 8) & 0x00ff00ffu);
   v = ((v & 0x0f0f0f0fu) << 4) | ((v >> 4) & 0x0f0f0f0fu);
