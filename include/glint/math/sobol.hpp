@@ -6,6 +6,7 @@
 #include <concepts>
 #include <cstdint>
 #include <type_traits>
+#include <utility>
 
 #include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
@@ -53,19 +54,26 @@ inline constexpr bool kShufflesBytes = requires(U u) {
   shuffle_bytes(u, u);
 };
 
+// A table's four words repeated across every lane of U, as a constant: a table filled lane by
+// lane at run time is not folded at sixteen lanes and costs more than the shuffles save.
+template <typename U, std::size_t... I>
+constexpr U repeat_table(const std::uint32_t (&words)[4], std::index_sequence<I...>) {
+  return U{words[I % 4]...};
+}
+
 template <typename U>
-U lane_table(const std::uint32_t (&words)[4]) {
-  U table{};
-  for (int i = 0; i < kLanesOf<U>; ++i)
-    table[i] = words[i % 4];
-  return table;
+constexpr U lane_table(const std::uint32_t (&words)[4]) {
+  return repeat_table<U>(words, std::make_index_sequence<kLanesOf<U>>{});
 }
 
 template <typename U>
 U reverse_bits_by_bytes(U v) {
-  const U bytes = shuffle_bytes(v, lane_table<U>(kByteReversal));
-  return shuffle_bytes(lane_table<U>(kLowNibbleReversed), bytes & 0x0f0f0f0fu) |
-         shuffle_bytes(lane_table<U>(kHighNibbleReversed), (bytes >> 4) & 0x0f0f0f0fu);
+  static constexpr U kBytes = lane_table<U>(kByteReversal);
+  static constexpr U kLow = lane_table<U>(kLowNibbleReversed);
+  static constexpr U kHigh = lane_table<U>(kHighNibbleReversed);
+  const U bytes = shuffle_bytes(v, kBytes);
+  return shuffle_bytes(kLow, bytes & 0x0f0f0f0fu) |
+         shuffle_bytes(kHigh, (bytes >> 4) & 0x0f0f0f0fu);
 }
 
 /// Bit reversal: turns a binary fraction's digits (most significant first) into an integer's
