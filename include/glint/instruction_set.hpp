@@ -21,7 +21,6 @@
 //
 //   GLINT_AVX2    8-wide AVX2 + FMA kernels (SphereSet, WallSet, the BVH's nodes, ...)
 //   GLINT_AVX512  16-wide AVX-512 forms of the batched ray queries (x86-64-v4: F, VL, BW, DQ)
-//   GLINT_SSE41   4-wide SSE4.1 code (the BVH build's binning)
 //
 // Each is defined when the compiler targets that instruction set (e.g. -march=native) and
 // GLINT_NO_SIMD is not defined. The shading's lanes (math/wide.hpp) follow the compiler's
@@ -32,9 +31,6 @@
 #if !defined(GLINT_NO_SIMD)
 #if defined(__AVX2__) && defined(__FMA__)
 #define GLINT_AVX2 1
-#endif
-#if defined(__SSE4_1__)
-#define GLINT_SSE41 1
 #endif
 #if defined(GLINT_AVX2) && defined(__AVX512F__) && defined(__AVX512VL__) && \
     defined(__AVX512BW__) && defined(__AVX512DQ__)

@@ -1,7 +1,6 @@
 #pragma once
 // glint's batched geometry: its lane count and the registers its SIMD kernels compute in. The
-// SIMD switches (GLINT_AVX2, GLINT_AVX512, GLINT_SSE41, GLINT_NO_SIMD) are
-// glint/instruction_set.hpp's.
+// SIMD switches (GLINT_AVX2, GLINT_AVX512, GLINT_NO_SIMD) are glint/instruction_set.hpp's.
 //
 // The kernels that pair rays with spheres lane by lane (sphere_kernel.hpp, ray_batch_kernel.hpp)
 // are written once over a register type L: Lanes1, plain scalars, Lanes8, AVX2's eight floats,
@@ -84,7 +83,7 @@ struct Lanes1 {
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE
 
-#if defined(GLINT_AVX2) || defined(GLINT_SSE41)
+#if defined(GLINT_AVX2)
 #include <immintrin.h>
 #endif
 

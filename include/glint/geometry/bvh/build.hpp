@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <exception>
 #include <iterator>
 #include <limits>
@@ -345,50 +346,40 @@ class Builder {
 
   Bins bin(const Binning& binning, std::size_t begin, std::size_t end) const {
     Bins bins;
-#if defined(GLINT_SSE41)
-    // Binning is most of the build: each bin's four corners kept as SSE registers' worth, and
-    // a sphere's centre and radius read as one, take a quarter of the scalar min and max.
-    // Operands in Box::grow's order (glm::min(a, b) is b < a ? b : a, _mm_min_ps(b, a) too),
-    // so the bounds are the same floats.
+    // Binning is most of the build: a bin's four corners as vectors of four floats and a
+    // sphere's centre and radius read as one (SSE on any x86-64) take a quarter of the min and
+    // max of Box::grow. Operands in its order (glm::min(a, b) is b < a ? b : a), so the bounds
+    // are the same floats.
+    using Four = float __attribute__((vector_size(16)));
     static_assert(offsetof(SphereInput, radius) == 3 * sizeof(float));
+    const auto lower = [](Four value, Four bound) { return value < bound ? value : bound; };
+    const auto upper = [](Four value, Four bound) { return bound < value ? value : bound; };
     struct Corners {
-      __m128 box_lower, box_upper, centroid_lower, centroid_upper;
+      Four box_lower, box_upper, centroid_lower, centroid_upper;
     };
-    const __m128 highest = _mm_set1_ps(std::numeric_limits<float>::max());
-    const __m128 lowest = _mm_set1_ps(-std::numeric_limits<float>::max());
+    const Four highest = Four{} + std::numeric_limits<float>::max();
+    const Four lowest = Four{} - std::numeric_limits<float>::max();
     std::array<Corners, kBins> corners;
     corners.fill({highest, lowest, highest, lowest});
     for (std::size_t i = begin; i < end; ++i) {
       const SphereInput& s = spheres_[i];
       const auto b = std::size_t(binning.bin_of(s));
       Corners& c = corners[b];
-      const __m128 center_radius = _mm_loadu_ps(&s.center.x);  // the radius in the last lane
-      const __m128 radius = _mm_shuffle_ps(center_radius, center_radius, _MM_SHUFFLE(3, 3, 3, 3));
-      c.box_lower = _mm_min_ps(_mm_sub_ps(center_radius, radius), c.box_lower);
-      c.box_upper = _mm_max_ps(_mm_add_ps(center_radius, radius), c.box_upper);
-      c.centroid_lower = _mm_min_ps(center_radius, c.centroid_lower);
-      c.centroid_upper = _mm_max_ps(center_radius, c.centroid_upper);
+      Four center_radius;  // the radius in the last lane
+      std::memcpy(&center_radius, &s.center.x, sizeof center_radius);
+      const Four radius = __builtin_shufflevector(center_radius, center_radius, 3, 3, 3, 3);
+      c.box_lower = lower(center_radius - radius, c.box_lower);
+      c.box_upper = upper(center_radius + radius, c.box_upper);
+      c.centroid_lower = lower(center_radius, c.centroid_lower);
+      c.centroid_upper = upper(center_radius, c.centroid_upper);
       ++bins.counts[b];
     }
-    const auto vec3 = [](__m128 v) {
-      alignas(16) float f[4];
-      _mm_store_ps(f, v);
-      return Vec3(f[0], f[1], f[2]);
-    };
+    const auto vec3 = [](Four v) { return Vec3(v[0], v[1], v[2]); };
     for (std::size_t b = 0; b < std::size_t(kBins); ++b) {
       if (bins.counts[b] == 0) continue;  // left as an empty box
       bins.bounds[b].box = {vec3(corners[b].box_lower), vec3(corners[b].box_upper)};
       bins.bounds[b].centroids = {vec3(corners[b].centroid_lower), vec3(corners[b].centroid_upper)};
     }
-#else
-    for (std::size_t i = begin; i < end; ++i) {
-      const SphereInput& s = spheres_[i];
-      const int b = binning.bin_of(s);
-      bins.bounds[b].box.grow(bounds_of(s));
-      bins.bounds[b].centroids.grow(s.center);
-      ++bins.counts[b];
-    }
-#endif
     return bins;
   }
 
