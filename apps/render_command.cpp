@@ -24,7 +24,9 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <string_view>
 #include <utility>
+#include <vector>
 
 #include "glint/config.hpp"
 #include "glint/error.hpp"
@@ -203,6 +205,56 @@ std::string image_path(std::string_view option, std::string_view path, std::stri
   return std::string(path);
 }
 
+/// The number of single-character insertions, deletions and substitutions that turn `a` into
+/// `b` (Levenshtein).
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+/// " (did you mean '--spp'?)" for an unknown option within two edits, and a third of its
+/// length, of one that `usage` lists, else "". The usage text is the one list of the options:
+/// an option is a word starting with '-' that starts one of its lines, or follows ", " there.
+std::string nearest_option_hint(std::string_view unknown, std::string_view usage) {
+  std::string_view best;
+  std::size_t best_distance = 3;
+  std::size_t start = 0;
+  while (start < usage.size()) {
+    std::size_t end = usage.find('\n', start);
+    if (end == std::string_view::npos) end = usage.size();
+    std::string_view line = usage.substr(start, end - start);
+    start = end + 1;
+    // "  -o, --output FILE   ...": the option words before the first run of two spaces.
+    const std::size_t indent = line.find_first_not_of(' ');
+    if (indent == std::string_view::npos || indent == 0 || line[indent] != '-') continue;
+    line = line.substr(indent, line.find("  ", indent) - indent);
+    while (!line.empty() && line[0] == '-') {
+      const std::size_t word_end = line.find_first_of(" ,");
+      const std::string_view option = line.substr(0, word_end);
+      const std::size_t distance = edit_distance(unknown, option);
+      // At most a third of the longer word changed: '-x' is not a misspelt '-o'.
+      if (distance < best_distance && 3 * distance <= std::max(unknown.size(), option.size())) {
+        best = option;
+        best_distance = distance;
+      }
+      if (word_end == std::string_view::npos) break;
+      line.remove_prefix(line.compare(word_end, 2, ", ") == 0 ? word_end + 2 : line.size());
+    }
+  }
+  return best.empty() ? "" : " (did you mean '" + std::string(best) + "'?)";
+}
+
 }  // namespace
 
 ExecutionModel execution_model(const Program& program, const Options& options) {
@@ -210,8 +262,7 @@ ExecutionModel execution_model(const Program& program, const Options& options) {
                                                   : ExecutionModel::scalar;
 }
 
-Options parse_options(int argc, char** argv, [[maybe_unused]] const Program& program,
-                      const ExtraOption& extra) {
+Options parse_options(int argc, char** argv, const Program& program, const ExtraOption& extra) {
   Options options;
   std::vector<std::string_view> args(argv + 1, argv + argc);
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -270,7 +321,8 @@ Options parse_options(int argc, char** argv, [[maybe_unused]] const Program& pro
     } else if (extra && extra(arg, value)) {
       continue;
     } else if (arg.size() > 1 && arg[0] == '-') {
-      throw UsageError{"unknown option '" + std::string(arg) + "'"};
+      throw UsageError{"unknown option '" + std::string(arg) + "'" +
+                       nearest_option_hint(arg, usage(program))};
     } else if (options.scene.empty()) {
       options.scene = std::string(arg);
     } else {
@@ -824,7 +876,8 @@ Failure current_failure(const Program& program) {
   try {
     throw;
   } catch (const UsageError& error) {
-    return {2, std::string(program.name) + ": " + error.message + "\n\n" + usage(program)};
+    return {2, std::string(program.name) + ": " + error.message + "\nRun '" +
+                   std::string(program.name) + " --help' for the options.\n"};
   } catch (const glint::UnsupportedSceneError& error) {
     return {3, std::string(error.what()) + "\n"};
   } catch (const glint::SceneError& error) {

@@ -80,7 +80,7 @@ struct Options {
 /// The run's execution model: wavefront where the variant has it, unless --scalar.
 ExecutionModel execution_model(const Program& program, const Options& options);
 
-/// A bad command line: status 2, the message followed by the usage.
+/// A bad command line: status 2, the message and where to find the options (--help).
 struct UsageError {
   std::string message;
 };

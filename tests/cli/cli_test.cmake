@@ -41,8 +41,13 @@ endfunction()
 
 glint_cli_test(help STATUS 0 STDOUT "usage: glint-render SCENE" ARGS --help)
 glint_cli_test(no-arguments STATUS 2 STDERR "no scene file given")
-glint_cli_test(unknown-option STATUS 2 STDERR "unknown option '--frobnicate'"
+glint_cli_test(unknown-option STATUS 2
+               STDERR "unknown option '--frobnicate'.Run 'glint-render[-a-z]* --help' for the options"
                ARGS ${glint_cli_scenes}/tiny.scene --frobnicate)
+# A near miss of an option's name (found in the usage text) is named.
+glint_cli_test(misspelt-option STATUS 2
+               STDERR "unknown option '--max_depth' .did you mean '--max-depth'.."
+               ARGS ${glint_cli_scenes}/tiny.scene --max_depth 3)
 glint_cli_test(bad-spp STATUS 2 STDERR "--spp expects an integer"
                ARGS ${glint_cli_scenes}/tiny.scene --spp 12x)
 glint_cli_test(zero-width STATUS 2 STDERR "--width expects an integer"

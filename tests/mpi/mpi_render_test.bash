@@ -122,7 +122,8 @@ case_bad_option() {
   ((status == 2)) || fail "exit status $status, expected 2"
   (($(grep -c "^glint-render-mpi: unknown option '--frobnicate'$" err.log) == 1)) ||
     fail "not one message for the option"
-  (($(grep -c "^usage: mpirun -n N glint-render-mpi SCENE" err.log) == 1)) || fail "not one usage"
+  (($(grep -c "^Run 'glint-render-mpi --help' for the options" err.log) == 1)) ||
+    fail "not one pointer to --help"
 }
 
 # A render long enough to be stopped or killed while it runs: 37 passes of tiny.scene (about
