@@ -234,7 +234,6 @@ TEST_CASE("glass without Fresnel in a uniform enclosure transmits Le times colou
   // transparent_color again; a sphere never traps a ray that entered it) and meets the
   // enclosure: transparent_color^2 * Le.
   using Variant = glint::variants::no_fresnel;
-  STATIC_REQUIRE_FALSE(Variant::fresnel::enabled);
   const Color le(2.0f, 4.0f, 1.0f), tc(0.5f, 1.0f, 0.25f);
   glint::SceneDescription scene = empty_scene({0.0f, 0.0f, 50.0f}, Vec3(0.0f), 10.0f);
   add_sphere(scene, Vec3(0.0f), 100.0f).material = emitter(le);

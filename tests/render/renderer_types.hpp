@@ -38,7 +38,6 @@ auto renderers_of(std::tuple<V...>*)
 
 /// Renderer<V> for every compiled variant V, then WavefrontRenderer<V> for the chain ones.
 using AllRenderers = decltype(renderers_of(static_cast<glint::compiled::Variants*>(nullptr)));
-static_assert(std::tuple_size_v<AllRenderers> > std::tuple_size_v<glint::compiled::Variants>);
 
 template <typename... V>
 auto chain_variants(std::tuple<V...>*) -> decltype(std::tuple_cat(

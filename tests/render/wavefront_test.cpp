@@ -174,10 +174,8 @@ sphere     center=0,0,0 radius=8 diffuse=0 mirror=1 emission=3e38,3e38,3e38
   CHECK(same_bits(wavefront.film, scalar.film));
 }
 
-TEST_CASE("the renderer types the tests run include every chain variant's wavefront renderer",
+TEST_CASE("fast is a chain variant, which the wavefront renders, and report a tree variant",
           "[wavefront]") {
-  STATIC_REQUIRE(std::tuple_size_v<glint_test::AllRenderers> ==
-                 std::tuple_size_v<glint::compiled::Variants> + std::tuple_size_v<ChainVariants>);
   STATIC_REQUIRE(glint::WavefrontConfig<glint::variants::fast>);
   STATIC_REQUIRE_FALSE(glint::WavefrontConfig<glint::variants::report>);
 }
