@@ -1,4 +1,4 @@
-// Huge spheres near the camera (issue 12): a floor of radius 1e3 to 1e10 (the largest the scene
+// Huge spheres near the camera: a floor of radius 1e3 to 1e10 (the largest the scene
 // format accepts) under a camera 1e-3 to 1e3 above it, against the analytic answer: rays from
 // the camera meet the exact sphere (solved in long double), which is the plane h / -d.y where
 // the curvature is negligible, and rays pointing up miss; a camera 1e-3 above the report's room

@@ -35,6 +35,7 @@
 
 #include "glint/detail/text.hpp"
 #include "glint/instruction_set.hpp"
+#include "glint/io/input_file.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/scene/material.hpp"
 #include "glint/scene/scene_description.hpp"
@@ -547,25 +548,31 @@ inline SceneDescription read_scene_text(std::string_view text, std::string sourc
 inline std::string read_scene_file_text(const std::filesystem::path& path,
                                         const SceneReadCallback& progress = {}) {
   const std::string source = path.string();
-  const auto fail = [&](const std::string& problem) { throw SceneError(source, 0, problem); };
-  std::error_code ec;
-  // fopen succeeds on a directory on Linux; say what is wrong instead of "Is a directory" on
-  // the first read.
-  if (std::filesystem::is_directory(path, ec)) fail("cannot open file: it is a directory");
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(source.c_str(), "rb"),
-                                                             &std::fclose);
-  if (!file) fail(detail::concat({"cannot open file: ", std::generic_category().message(errno)}));
+  // Through InputFile, the one reader of untrusted files: it refuses a directory, knows the size
+  // of a regular file before anything is read, and reads a pipe or a device as it comes.
+  bool opened = false;
+  const auto fail = [&](const std::string& problem) {
+    constexpr std::string_view kReadError = "read error: ";
+    if (!opened) throw SceneError(source, 0, detail::concat({"cannot open file: ", problem}));
+    const std::string_view why = std::string_view(problem).starts_with(kReadError)
+                                     ? std::string_view(problem).substr(kReadError.size())
+                                     : std::string_view(problem);
+    throw SceneError(source, 0, detail::concat({"cannot read file: ", why}));
+  };
+  InputFile file(path, fail);
+  opened = true;
   std::string text;
-  std::uint64_t expected_size = 0;  // unknown for a pipe or a device
+  const std::uint64_t expected_size = file.size().value_or(0);  // 0: a pipe or a device
   const auto too_large = [&] {
-    fail(detail::concat({"file is larger than ", std::to_string(kMaxSceneFileSize >> 20), " MiB"}));
+    throw SceneError(
+        source, 0,
+        detail::concat({"file is larger than ", std::to_string(kMaxSceneFileSize >> 20), " MiB"}));
   };
   // Reserved from the size of a regular file, so that a big scene is copied only once; one
   // beyond the limit is refused before it is read.
-  if (const std::uintmax_t size = std::filesystem::file_size(path, ec); !ec) {
-    if (size > kMaxSceneFileSize) too_large();
-    text.reserve(static_cast<std::size_t>(size));
-    expected_size = size;
+  if (file.size()) {
+    if (*file.size() > kMaxSceneFileSize) too_large();
+    text.reserve(static_cast<std::size_t>(*file.size()));
   }
   // Text without line ends (binary data free of NUL bytes, an endless stream of one
   // character) is refused once a line exceeds what the parser accepts, as the parser would.
@@ -575,7 +582,7 @@ inline std::string read_scene_file_text(const std::filesystem::path& path,
   for (std::size_t reads = 1;; ++reads) {
     if (progress && reads % 16 == 0)
       progress({SceneReadProgress::Stage::reading, text.size(), expected_size});
-    const std::size_t got = std::fread(buffer, 1, sizeof buffer, file.get());
+    const std::size_t got = file.read(buffer, sizeof buffer);
     // Binary input (an image, /dev/zero) is refused at its first NUL byte, with the line the
     // parser would name, rather than after reading up to the size limit.
     if (const void* nul = std::memchr(buffer, '\0', got)) {
@@ -600,11 +607,7 @@ inline std::string read_scene_file_text(const std::filesystem::path& path,
       if (text.size() + got > kMaxSceneFileSize) too_large();
       text.append(buffer, got);
     }
-    if (got < sizeof buffer) {
-      if (std::ferror(file.get()))
-        fail(detail::concat({"cannot read file: ", std::generic_category().message(errno)}));
-      break;
-    }
+    if (got < sizeof buffer) break;  // the end: InputFile's reads fail through `fail`
   }
   return text;
 }

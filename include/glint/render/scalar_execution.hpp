@@ -73,9 +73,9 @@ class ScalarExecution {
   /// finite is counted as invalid instead. `samples` counts them, published in `progress`. The one
   /// definition of a pixel's sum, shared by render and render_pixel so that both give the same
   /// bits. Kept out of line, and out of interprocedural optimisation, so that a program holds one
-  /// copy of it: with -ffp-contract=fast (GCC's default) each copy of the estimator may fuse
-  /// multiplies and adds differently, and two translation units' copies did move pixels by a few
-  /// ulps. A call per pixel and pass costs nothing next to its paths.
+  /// copy of it: with -ffp-contract=off all copies agree, but a program built without it (see
+  /// glint/fp_contract.hpp) may fuse each copy's multiplies and adds differently, and render and
+  /// render_pixel would disagree by a few ulps. A call per pixel and pass costs nothing here.
 #if defined(__GNUC__) && !defined(__clang__)
   [[gnu::noipa]]
 #else
