@@ -11,8 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "glint/io/scene_reader.hpp"
 #include "glint/math/random.hpp"
 #include "glint/scene/inclusion_tree.hpp"
+#include "glint/scene/scene.hpp"
 #include "random_vectors.hpp"
 
 using glint::SphereRelation;
@@ -195,6 +197,47 @@ TEST_CASE("partially overlapping transparent spheres are rejected, naming both l
                            glass({2.5f, 0, 0}, 1, 1.7f, 5)}),
                  4, 5);
   }
+  SECTION("touching as written, but overlapping by more than the decimals' rounding") {
+    // 87.5 + 12.6 = 100.1: 0.1 of overlap; and 87.4001 + 12.6 = 100.0001, 1e-4 of overlap, twice
+    // the tolerance at magnitude 100 (100 * 2^-21 = 4.8e-5).
+    expect_error(scene_of({glass({0, 0, 0}, 100, 1.5f, 7), glass({87.5f, 0, 0}, 12.6f, 1.3f, 8)}),
+                 7, 8);
+    expect_error(
+        scene_of({glass({0, 0, 0}, 100, 1.5f, 7), glass({87.4001f, 0, 0}, 12.6f, 1.3f, 8)}), 7, 8);
+  }
+}
+
+TEST_CASE("spheres that touch as written in decimals touch once read as floats", "[inclusion]") {
+  // The floats nearest 87.4 and 12.6 add up to 100.0000019: read exactly, the inner sphere
+  // pokes 1.9e-6 out of the outer one; so does the radius-2.2 sphere into the radius-1.1 one
+  // (by 1.2e-7) when their centres are 3.3 apart. Both within rounding of the decimals.
+  const auto classify = [](Vec3 ca, float ra, Vec3 cb, float rb) {
+    return glint::classify_spheres(sphere(ca, ra), sphere(cb, rb));
+  };
+  REQUIRE(double(87.4f) + double(12.6f) > 100.0);
+  REQUIRE(double(1.1f) + double(2.2f) > double(3.3f));
+  CHECK(classify({87.4f, 0, 0}, 12.6f, {0, 0, 0}, 100) == SphereRelation::first_inside_second);
+  CHECK(classify({0, 0, 0}, 100, {0, -87.4f, 0}, 12.6f) == SphereRelation::second_inside_first);
+  CHECK(classify({0, 0, 0}, 1.1f, {3.3f, 0, 0}, 2.2f) == SphereRelation::disjoint);
+  // Coincident within rounding stays an overlap.
+  CHECK(classify({0.1f, 0, 0}, 3.3f, {0.1f + 1e-7f, 0, 0}, 3.3f) == SphereRelation::overlapping);
+
+  // The inclusion tree puts the inner sphere inside, and so does a whole scene read from text.
+  const glint::InclusionTree tree = glint::build_inclusion_tree(
+      scene_of({glass({0, 0, 0}, 100, 1.5f), glass({87.4f, 0, 0}, 12.6f, 1.2f),
+                glass({-87.4f, 0, 0}, 12.6f, 1.7f)}));
+  CHECK(tree.parent[1] == 0u);
+  CHECK(tree.parent[2] == 0u);
+  CHECK(tree.outside_ior[1] == 1.5f);
+  CHECK(tree.outside_ior[2] == 1.5f);
+  const glint::SceneDescription read = glint::read_scene_text(
+      "camera position=0,0,300 look_at=0,0,0 fov=45\n"
+      "light position=0,150,150 intensity=1000\n"
+      "sphere center=0,0,0 radius=100 transparent=1 diffuse=0 ior=1.5\n"
+      "sphere center=87.4,0,0 radius=12.6 transparent=1 diffuse=0 ior=1.2\n",
+      "touching.scene");
+  const glint::Scene scene = glint::Scene::build(read);
+  CHECK(scene.surface(1).ior_outside == 1.5f);
 }
 
 namespace {

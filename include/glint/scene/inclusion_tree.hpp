@@ -36,18 +36,33 @@ inline constexpr std::uint32_t kNoParent = 0xffffffffu;
 
 enum class SphereRelation { disjoint, first_inside_second, second_inside_first, overlapping };
 
-/// Exact classification in double precision. Touching spheres (externally or internally
-/// tangent) count as disjoint or nested; coincident spheres as overlapping.
+/// How far two spheres may overlap and still count as touching: four float ulps of the largest
+/// magnitude among their centres' coordinates and radii (2^-21 of it). A scene's decimals are
+/// rounded to float, each by up to half an ulp of its own magnitude, so spheres that touch as
+/// written (87.4 + 12.6 inside 100) may overlap by a few ulps once read: the distance of the
+/// centres carries up to about two ulps of error, each radius half of one.
+inline double touching_tolerance(const SphereDescription& a, const SphereDescription& b) {
+  const auto largest = [](const SphereDescription& s) {
+    return std::max({std::abs(double(s.center.x)), std::abs(double(s.center.y)),
+                     std::abs(double(s.center.z)), double(s.radius)});
+  };
+  return std::ldexp(std::max(largest(a), largest(b)), -21);
+}
+
+/// Classification in double precision of the spheres as read. Touching spheres (externally or
+/// internally tangent, up to touching_tolerance) count as disjoint or nested; coincident
+/// spheres (to the same tolerance) as overlapping.
 inline SphereRelation classify_spheres(const SphereDescription& a, const SphereDescription& b) {
   const double dx = double(a.center.x) - b.center.x;
   const double dy = double(a.center.y) - b.center.y;
   const double dz = double(a.center.z) - b.center.z;
   const double distance = std::sqrt(dx * dx + dy * dy + dz * dz);
   const double ra = a.radius, rb = b.radius;
-  if (distance >= ra + rb) return SphereRelation::disjoint;
-  if (distance == 0.0 && ra == rb) return SphereRelation::overlapping;
-  if (distance + ra <= rb) return SphereRelation::first_inside_second;
-  if (distance + rb <= ra) return SphereRelation::second_inside_first;
+  const double tolerance = touching_tolerance(a, b);
+  if (distance <= tolerance && std::abs(ra - rb) <= tolerance) return SphereRelation::overlapping;
+  if (distance >= ra + rb - tolerance) return SphereRelation::disjoint;
+  if (distance + ra <= rb + tolerance) return SphereRelation::first_inside_second;
+  if (distance + rb <= ra + tolerance) return SphereRelation::second_inside_first;
   return SphereRelation::overlapping;
 }
 
