@@ -42,7 +42,7 @@
 #include <utility>
 #include <vector>
 
-#include "compare_page.hpp"
+#include "compare_page_html.hpp"  // generated from compare_page.html (embed_page.cmake)
 #include "glint/image/compare.hpp"
 #include "glint/image/false_color.hpp"
 #include "glint/image/tone_map.hpp"

@@ -2,6 +2,12 @@
 # tests/viewer/viewer_test.bash. glint-compare is built in bench/ and the renderers in
 # apps/, so both must be on; the targets are named through generator expressions because
 # bench/ is added after tests/.
+# The page's script, which no build compiles, parsed by node --check: needs only the source.
+add_test(NAME "viewer: page script parses"
+         COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/page_script_test.sh
+                 ${PROJECT_SOURCE_DIR}/bench/compare_page.js)
+set_tests_properties("viewer: page script parses" PROPERTIES LABELS viewer SKIP_RETURN_CODE 77)
+
 if(NOT (GLINT_BUILD_BENCHMARKS AND GLINT_BUILD_PROGRAMS))
   message(STATUS "glint: no viewer tests (they need GLINT_BUILD_BENCHMARKS and "
                  "GLINT_BUILD_PROGRAMS)")
