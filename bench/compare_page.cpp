@@ -6,8 +6,9 @@
 //   glint-compare MANIFEST -o DIR [--tonemap OP] [--exposure EV] [--baseline VARIANT]
 //                 [--title TEXT] [--note TEXT]
 //
-// The manifest is a tab-separated text file; empty lines and lines starting with '#' are
-// skipped, and relative paths are relative to the manifest's directory:
+// The manifest is a tab-separated text file (of at most 16 MiB, lines of at most 65536
+// characters); empty lines and lines starting with '#' are skipped, and relative paths are
+// relative to the manifest's directory:
 //
 //   reference<TAB>SCENE<TAB>IMAGE[<TAB>DESCRIPTION]
 //   variant<TAB>SCENE<TAB>VARIANT<TAB>IMAGE<TAB>CPU_SECONDS<TAB>SPP[<TAB>DESCRIPTION]
@@ -33,7 +34,6 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -48,6 +48,7 @@
 #include "glint/image/tone_map.hpp"
 #include "glint/io/image_reader.hpp"
 #include "glint/io/image_writer.hpp"
+#include "glint/io/input_file.hpp"
 #ifdef GLINT_HAVE_EXR
 #include "glint/exr/exr_image.hpp"
 #endif
@@ -196,17 +197,73 @@ bool is_plain_name(std::string_view name) {
   });
 }
 
+// A manifest names a few images a line. These bounds are far beyond any real one; what is not a
+// manifest (/dev/zero, a line without end, a pipe that never ends) is refused once it passes
+// them, before it takes the memory.
+constexpr std::size_t kMaxManifestLineLength = std::size_t{1} << 16;
+constexpr std::uint64_t kMaxManifestSize = std::uint64_t{1} << 24;
+
+/// Reads the manifest a line at a time within its bounds.
+class ManifestLines {
+ public:
+  explicit ManifestLines(const fs::path& manifest)
+      : name_(manifest.string()), in_(manifest, [this](const std::string& problem) {
+          throw Failure{"cannot read the manifest " + name_ + ": " + problem};
+        }) {
+    if (in_.size() && *in_.size() > kMaxManifestSize) too_large();
+  }
+
+  /// The next line, without its '\n', into `line`; false at the end of the file.
+  bool next(std::string& line) {
+    line.clear();
+    ++number_;  // first, so that a file too large is named at the line that makes it so
+    int c = get();
+    if (c < 0) {
+      --number_;
+      return false;
+    }
+    for (; c >= 0 && c != '\n'; c = get()) {
+      if (c == '\0') fail("line contains a NUL byte (is this a text file?)");
+      if (line.size() == kMaxManifestLineLength)
+        fail("line is longer than " + std::to_string(kMaxManifestLineLength) + " characters");
+      line += char(c);
+    }
+    return true;
+  }
+
+  /// "MANIFEST:LINE" of the line last read.
+  std::string where() const { return name_ + ":" + std::to_string(number_); }
+
+ private:
+  int get() {
+    const int c = in_.get();
+    if (in_.position() > kMaxManifestSize) too_large();
+    return c;
+  }
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw Failure{where() + ": " + problem};
+  }
+  [[noreturn]] void too_large() const {
+    const std::string problem =
+        "file is larger than " + std::to_string(kMaxManifestSize >> 20) + " MiB";
+    throw Failure{number_ > 0 ? where() + ": " + problem : name_ + ": " + problem};
+  }
+
+  std::string name_;
+  glint::InputFile in_;
+  int number_ = 0;
+};
+
 std::vector<Scene> read_manifest(const fs::path& manifest) {
-  std::ifstream in(manifest);
-  if (!in) throw Failure{"cannot read the manifest " + manifest.string()};
+  ManifestLines lines(manifest);
   const fs::path base = manifest.parent_path();
   std::vector<Scene> scenes;
   std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    const std::string where = manifest.string() + ":" + std::to_string(number);
-    const auto fail = [&](const std::string& why) { throw Failure{where + ": " + why}; };
+  while (lines.next(line)) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line.front() == '#') continue;
+    const std::string where = lines.where();
+    const auto fail = [&](const std::string& why) { throw Failure{where + ": " + why}; };
     const std::vector<std::string> f = split_tabs(line);
     const std::string& kind = f[0];
     std::size_t expected_min = 0;
@@ -267,7 +324,6 @@ std::vector<Scene> read_manifest(const fs::path& manifest) {
       fail("samples per pixel must be a whole number of at least 1, got '" + spp + "'");
     scene->variants.push_back(std::move(variant));
   }
-  if (in.bad()) throw Failure{"cannot read the manifest " + manifest.string()};
   if (scenes.empty()) throw Failure{manifest.string() + ": no images listed"};
   for (const Scene& scene : scenes)
     if (!scene.reference)

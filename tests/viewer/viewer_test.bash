@@ -200,7 +200,8 @@ case_errors() {
     "variant|tiny|fast|fast.pfm|1|8"
   expect_refusal "a variant twice" \
     "twice.tsv:3: variant 'fast' of scene 'tiny' is already at twice.tsv:2" twice.tsv
-  expect_refusal "no manifest" "cannot read the manifest nowhere.tsv" nowhere.tsv
+  expect_refusal "no manifest" \
+    "cannot read the manifest nowhere.tsv: No such file or directory" nowhere.tsv
   # Images that would take all the memory or never end: refused from their first bytes (the
   # readers' memory is measured in tests/unit/image_reader_test.cpp).
   printf 'PF\n8192 8192\n-1.0\n' >claims.pfm
@@ -210,6 +211,23 @@ case_errors() {
     claims.tsv
   write_manifest zero.tsv "reference|tiny|/dev/zero"
   expect_refusal "/dev/zero" "zero.tsv:1: /dev/zero: not a colour PFM file" zero.tsv
+  # Manifests that would do the same are refused at the bound they pass (16 MiB, lines of 65536
+  # characters), named with their line.
+  expect_refusal "/dev/zero as the manifest" \
+    "^glint-compare: error: /dev/zero:1: line contains a NUL byte" /dev/zero
+  head -c 100000 /dev/zero | tr '\0' a >long.tsv
+  expect_refusal "a line of 100000 characters" \
+    "^glint-compare: error: long.tsv:1: line is longer than 65536 characters" long.tsv
+  expect_refusal "a line without end" \
+    "^glint-compare: error: /dev/fd/[0-9]+:1: line is longer than 65536 characters" \
+    <(tr '\0' a </dev/zero)
+  # Lines of 12 bytes: byte 2^24 + 1 is on line floor(2^24 / 12) + 1 = 1398102.
+  expect_refusal "comments without end" \
+    "^glint-compare: error: /dev/fd/[0-9]+:1398102: file is larger than 16 MiB" \
+    <(yes '# a comment')
+  truncate -s 17M large.tsv
+  expect_refusal "a manifest of 17 MiB" "^glint-compare: error: large.tsv: file is larger than 16 MiB" \
+    large.tsv
 
   # A failed run leaves an earlier page as it was.
   cp -r page before
