@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "cpu_check.hpp"  // before main: this CPU has what the build uses
+#include "glint/detail/text.hpp"
 #include "glint/generate/random_scene.hpp"
 #include "glint/io/scene_writer.hpp"
 
@@ -32,11 +33,9 @@ constexpr std::string_view kProgram = "glint-random-scene";
 using Parameters = glint::RandomSceneParameters;
 
 /// Shortest text that reads back as the same float, so that a header comment reproduces its
-/// file exactly; unlike std::to_string it ignores the C locale.
+/// file exactly.
 std::string shortest(float v) {
-  char buffer[32];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, r.ptr);
+  return glint::detail::format_number(v);
 }
 
 /// A command-line option that sets one generator parameter.

@@ -1,7 +1,10 @@
 #pragma once
-// Building error messages: joining pieces and printing floats, the same way everywhere.
+// Building text: joining message pieces, and printing floats the same way everywhere (error
+// messages, scene files, the options a generated file records).
 
+#include <algorithm>
 #include <charconv>
+#include <cstddef>
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -26,12 +29,49 @@ inline std::string concat(std::initializer_list<std::string_view> parts) {
   return out;
 }
 
-/// Shortest round-trip text of a float; unlike std::to_string it ignores the C locale.
-inline std::string format_number(float value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  if (result.ec != std::errc{}) return "?";
-  return std::string(buffer, result.ptr);
+/// How a float is spelt. Either way the text has the fewest significant digits that read back
+/// (std::strtof, std::from_chars) as the same float, bit for bit, -0 and subnormals included.
+enum class FloatNotation {
+  /// std::to_chars's shortest text, plain or scientific, whichever is shorter: 0.1, 1e+05.
+  shortest,
+  /// Plain notation unless it is more than 3 characters longer than the shortest text, so that
+  /// a file to read and edit by hand says 100000 rather than 1e+05 (but 1e+30 and 1e-07).
+  plain_unless_long,
+};
+
+/// The most characters write_number writes: the smallest subnormal in plain notation, with its
+/// sign, "-0.000...0001" (the 1 is the 45th decimal).
+inline constexpr std::size_t kMaxFloatTextLength = 48;
+
+/// Writes the text of `value` to `out`, which has room for kMaxFloatTextLength characters, and
+/// returns the end of the text. Infinities and NaNs are "inf", "-inf", "nan" and "-nan". Unlike
+/// std::to_string and printf it ignores the C locale. The one place glint spells a float as text.
+inline char* write_number(char* out, float value,
+                          FloatNotation notation = FloatNotation::shortest) {
+  char shortest[kMaxFloatTextLength];
+  const char* const shortest_end = std::to_chars(shortest, shortest + sizeof shortest, value).ptr;
+  if (notation == FloatNotation::plain_unless_long) {
+    // Without a precision, std::to_chars writes the fewest digits that read back in the format
+    // asked for as well.
+    const auto plain =
+        std::to_chars(out, out + kMaxFloatTextLength, value, std::chars_format::fixed);
+    if (plain.ec == std::errc{} && plain.ptr - out <= shortest_end - shortest + 3) return plain.ptr;
+  }
+  return std::copy(static_cast<const char*>(shortest), shortest_end, out);
+}
+
+/// Appends the text of `value` (write_number) to `out`.
+inline void append_number(std::string& out, float value,
+                          FloatNotation notation = FloatNotation::shortest) {
+  char text[kMaxFloatTextLength];
+  out.append(text, write_number(text, value, notation));
+}
+
+/// The text of `value` (write_number).
+inline std::string format_number(float value, FloatNotation notation = FloatNotation::shortest) {
+  std::string out;
+  append_number(out, value, notation);
+  return out;
 }
 
 }  // namespace detail

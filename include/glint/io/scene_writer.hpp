@@ -3,10 +3,11 @@
 // io/scene_reader.hpp: reading the text back gives the same description, every float bit for
 // bit (line numbers and the source label aside, which belong to the file, not the scene).
 //
-// Floats are printed with std::to_chars, which gives the shortest decimal string that parses
-// back to the same float; iostreams with a fixed precision either lose bits or print noise
-// digits. Every sphere gets an inline material: the description keeps no material names, and
-// inline keys make each line self-contained, so a generated file can be cut and pasted freely.
+// Floats are printed as the shortest decimal text that parses back to the same float
+// (detail::write_number, in detail/text.hpp); iostreams with a fixed precision either lose bits
+// or print noise digits. Every sphere gets an inline material: the description keeps no material
+// names, and inline keys make each line self-contained, so a generated file can be cut and pasted
+// freely.
 
 #include <bit>
 #include <charconv>
@@ -16,6 +17,7 @@
 #include <string>
 #include <system_error>
 
+#include "glint/detail/text.hpp"
 #include "glint/error.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/scene/scene_description.hpp"
@@ -37,20 +39,13 @@ inline bool same_bits(const Vec3& a, const Vec3& b) {
   return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z);
 }
 
-/// Appends the shortest decimal form of v that reads back to the same float. Plain notation
-/// wins unless it is much longer, so that a wall prints as 100000 rather than 1e+05 and a
-/// file stays easy to read and edit by hand.
+/// Appends the shortest decimal form of v that reads back to the same float, in plain notation
+/// unless that is much longer (detail/text.hpp), so that a wall prints as 100000 rather than
+/// 1e+05 and a file stays easy to read and edit by hand.
 inline void append_float(std::string& out, float v, const char* what) {
   if (!std::isfinite(v))
     throw SceneWriteError(std::string("cannot write a scene with a non-finite ") + what);
-  char general[32];
-  char fixed[64];  // the longest plain form, the smallest subnormal, takes 48 characters
-  const auto g = std::to_chars(general, general + sizeof general, v);
-  const auto f = std::to_chars(fixed, fixed + sizeof fixed, v, std::chars_format::fixed);
-  if (f.ec == std::errc{} && f.ptr - fixed <= g.ptr - general + 3)
-    out.append(fixed, f.ptr);
-  else
-    out.append(general, g.ptr);
+  append_number(out, v, FloatNotation::plain_unless_long);
 }
 
 inline void append_int(std::string& out, long long v) {
