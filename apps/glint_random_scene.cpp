@@ -24,6 +24,7 @@
 #include "cpu_check.hpp"  // before main: this CPU has what the build uses
 #include "glint/detail/text.hpp"
 #include "glint/generate/random_scene.hpp"
+#include "glint/io/image_writer.hpp"
 #include "glint/io/scene_writer.hpp"
 
 namespace {
@@ -105,8 +106,8 @@ void print_usage(std::ostream& out) {
          option.help + " (" + value_text(defaults, option) + ")");
     if (!option.note.empty()) line("", option.note);
   }
-  line("-o, --output FILE", "write to FILE (atomically: FILE.tmp, then renamed) instead");
-  line("", "of standard output");
+  line("-o, --output FILE", "write to FILE instead of standard output: to a new file");
+  line("", "beside it, renamed over it once complete");
   line("-h, --help", "show this help");
   out << "\n"
       << "exit status: 0 written (a warning on stderr if not every sphere fit), 1 bad\n"
@@ -254,48 +255,66 @@ void write_in_place(const std::filesystem::path& target, const SceneFile& file) 
   if (!out) error("cannot write " + target.string() + ": " + std::strerror(errno));
 }
 
-/// Writes beside the target and renames: the rename is atomic, so the target is either the old
-/// file or the complete new one, never a half-written scene.
-void write_atomically(const std::filesystem::path& target, const SceneFile& file) {
-  std::filesystem::path temporary = target;
-  temporary += ".tmp";
-  const auto give_up = [&](const std::string& message) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    error(message);
-  };
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) error("cannot create " + temporary.string() + ": " + std::strerror(errno));
-    file.write(out);
-    out.close();  // closing flushes, and a full disk may only show up here
-    if (!out) give_up("cannot write " + temporary.string() + ": " + std::strerror(errno));
+/// Writes through a temporary beside the target (glint::StagedFile, as glint-render does: an
+/// unpredictable name, created with O_EXCL | O_NOFOLLOW, so that nothing planted beside the
+/// target is written through), renamed over the target once complete: the target is either the
+/// old file or the whole new one, never a half-written scene, and a failure leaves no temporary.
+void write_staged(const std::filesystem::path& target, const SceneFile& file) {
+  try {
+    glint::StagedFile staged(target);
+    staged.append(file.comment.data(), file.comment.size());
+    glint::write_scene_in_pieces(
+        file.scene, [&](std::string_view text) { staged.append(text.data(), text.size()); });
+    staged.finish();
+    staged.commit();
+  } catch (const glint::Error& e) {
+    error(e.what());  // the temporary is gone with `staged`
   }
-  std::error_code ec;
-  std::filesystem::rename(temporary, target, ec);
-  if (ec)
-    give_up("cannot rename " + temporary.string() + " to " + target.string() + ": " + ec.message());
 }
 
-void write_output(const std::optional<std::string>& output, const SceneFile& file) {
-  if (!output) return write_to_standard_output(file);
-  std::filesystem::path target = *output;
+/// Where -o FILE goes.
+struct Destination {
+  std::filesystem::path path;
+  bool in_place = false;  ///< a device or a pipe (/dev/stdout, a FIFO), which a rename cannot
+                          ///< replace, and must not
+};
+
+/// Resolves and checks -o FILE before the scene is generated, so that a mistyped output fails
+/// at once, and clears what a killed run of the same output left beside it.
+Destination prepare_output(const std::string& output) {
+  Destination destination{output};
   std::error_code ec;
-  const auto status = std::filesystem::status(target, ec);  // follows symbolic links
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-    return write_in_place(target, file);
+  const auto status = std::filesystem::status(destination.path, ec);  // follows symbolic links
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    destination.in_place = true;
+    return destination;
+  }
   // Renaming onto a symbolic link would replace the link; write to the file it names.
-  if (std::filesystem::is_symlink(std::filesystem::symlink_status(target, ec)))
-    target = std::filesystem::weakly_canonical(target, ec);
-  write_atomically(target, file);
+  if (std::filesystem::is_symlink(std::filesystem::symlink_status(destination.path, ec)))
+    destination.path = std::filesystem::weakly_canonical(destination.path, ec);
+  try {
+    glint::check_output_path(destination.path);
+  } catch (const glint::Error& e) {
+    error(e.what());
+  }
+  glint::remove_stale_temporaries(destination.path);
+  return destination;
+}
+
+void write_output(const std::optional<Destination>& destination, const SceneFile& file) {
+  if (!destination) return write_to_standard_output(file);
+  if (destination->in_place) return write_in_place(destination->path, file);
+  write_staged(destination->path, file);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   const Options options = parse_arguments(argc, argv);
+  std::optional<Destination> destination;
+  if (options.output) destination = prepare_output(*options.output);
   const glint::RandomSceneResult result = generate(options.parameters);
   warn_if_incomplete(result);
-  write_output(options.output, SceneFile{header(options.parameters, result), result.scene});
+  write_output(destination, SceneFile{header(options.parameters, result), result.scene});
   return 0;
 }

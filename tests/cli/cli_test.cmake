@@ -318,3 +318,6 @@ if(TARGET glint-custom-shading)
   glint_cli_test(custom-shading-example PROGRAM glint-custom-shading STATUS 0 EXPECT_OUTPUT
                  OUTPUT striped.png ARGS ${glint_striped_scene} striped.png 2)
 endif()
+
+# glint-random-scene's output file.
+include(${CMAKE_CURRENT_LIST_DIR}/random_scene_test.cmake)

@@ -12,9 +12,11 @@
 #include <bit>
 #include <charconv>
 #include <cmath>
+#include <concepts>
 #include <cstdint>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 #include "glint/detail/text.hpp"
@@ -163,15 +165,26 @@ void emit_scene(const SceneDescription& scene, std::string& buffer, std::size_t 
 
 }  // namespace detail
 
-/// Writes `scene` to `out` in the glint text format. Throws SceneWriteError if a number
-/// is not finite (the format has no spelling for it); check `out` for I/O errors afterwards.
-inline void write_scene(std::ostream& out, const SceneDescription& scene) {
+/// Hands the text write_scene would write to `sink`, a std::string_view at a time of about
+/// 64 KiB, so that a scene of millions of spheres reaches a file without first being held whole
+/// in memory. Throws SceneWriteError as write_scene does (after `sink` had part of the text).
+template <typename Sink>
+requires std::invocable<Sink&, std::string_view>
+void write_scene_in_pieces(const SceneDescription& scene, Sink&& sink) {
   std::string buffer;
   constexpr std::size_t kChunk = std::size_t{1} << 16;
   buffer.reserve(kChunk + 512);
   detail::emit_scene(scene, buffer, kChunk, [&](std::string& text) {
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    sink(std::string_view(text));
     text.clear();
+  });
+}
+
+/// Writes `scene` to `out` in the glint text format. Throws SceneWriteError if a number
+/// is not finite (the format has no spelling for it); check `out` for I/O errors afterwards.
+inline void write_scene(std::ostream& out, const SceneDescription& scene) {
+  write_scene_in_pieces(scene, [&](std::string_view text) {
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
   });
 }
 
