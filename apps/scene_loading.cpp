@@ -1,0 +1,52 @@
+// scene_loading.hpp's definitions.
+
+#include "scene_loading.hpp"
+
+#include <utility>
+
+#include "command_line.hpp"
+#include "glint/io/checkpoint.hpp"
+#include "glint/io/scene_reader.hpp"
+#include "glint/scene/image_settings.hpp"
+#include "load_progress.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE::cli {
+
+std::string scene_file_text(LoadProgress& loading, const std::string& file) {
+  return glint::read_scene_file_text(file, loading.reader_callback());
+}
+
+std::uint64_t scene_text_hash(std::string_view text) {
+  return glint::fnv1a(text.data(), text.size());
+}
+
+glint::Scene parse_and_build(LoadProgress& loading, std::string text, const std::string& source) {
+  const glint::SceneDescription description =
+      glint::read_scene_text(text, source, loading.reader_callback());
+  std::string().swap(text);
+  loading.building(description.spheres.size());
+  glint::Scene built = glint::Scene::build(description);
+  loading.finished(built.sphere_count());
+  return built;
+}
+
+LoadedScene load_scene(const std::string& file, bool report, bool hash) {
+  LoadProgress loading(report, file);
+  std::string text = scene_file_text(loading, file);
+  const std::uint64_t text_hash = hash ? scene_text_hash(text) : 0;
+  return {parse_and_build(loading, std::move(text), file), text_hash};
+}
+
+glint::RenderSettings render_settings(const Options& options, const glint::Scene& scene) {
+  glint::RenderSettings settings = glint::RenderSettings::from(scene);
+  if (options.spp) settings.samples_per_pixel = *options.spp;
+  if (options.max_depth) settings.max_depth = *options.max_depth;
+  if (options.width) settings.width = *options.width;
+  if (options.height) settings.height = *options.height;
+  if (options.threads) settings.threads = *options.threads;
+  settings.seed = options.seed;
+  if (const std::string problem = glint::image_settings_problem(settings); !problem.empty())
+    throw UsageError{"the options with " + options.scene + "'s image settings: " + problem};
+  return settings;
+}
+}  // namespace glint::inline GLINT_ISA_NAMESPACE::cli
