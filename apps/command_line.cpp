@@ -38,8 +38,8 @@ constexpr std::string_view kOptionsBeforeThreads = R"(options:
 )";
 
 constexpr std::string_view kOptionsAfterThreads =
-    R"(  --seed N            random seed (default 0): same scene, settings, seed and execution
-                      model give the same image bit for bit
+    R"(  --seed N            random seed (default 0): same scene, settings and seed give the
+                      same image bit for bit
   --simd SET          instruction set to render with: auto (default: the widest this CPU
                       has), avx512 (16 paths at once), avx2 (8) or scalar (one); the
                       same image bit for bit with each
@@ -50,10 +50,10 @@ constexpr std::string_view kOptionsAfterThreads =
   --checkpoint-interval SECONDS
                       least time between two checkpoints while rendering (default 60;
                       0: after every pass)
-  --resume FILE       continue the render saved in FILE (same scene file, variant,
-                      execution model and image options, seed included): the image is
-                      then exactly the one an uninterrupted render gives; a checkpoint of
-                      another render is refused (status 1) before any rendering
+  --resume FILE       continue the render saved in FILE (same scene file, variant and
+                      image options, seed included; either execution model): the image
+                      is then exactly the one an uninterrupted render gives; a checkpoint
+                      of another render is refused (status 1) before any rendering
   --time-limit SECONDS
                       stop after the pass that ends past SECONDS of rendering and write
                       the image of the passes done (status 0, saying what it holds)

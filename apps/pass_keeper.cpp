@@ -12,28 +12,11 @@ namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
 namespace {
 
-/// The variant a checkpoint's key names: for the scalar renderer the variant's name alone, as
-/// before there was a wavefront renderer, so that those checkpoints still resume (with --scalar,
-/// bit for bit); for the wavefront renderer "NAME, wavefront", so that no checkpoint continues
-/// in the other execution model, whose image differs in its last bits.
-std::string checkpoint_variant(const Program& program, ExecutionModel model) {
-  return model == ExecutionModel::scalar ? std::string(program.variant)
-                                         : renderer_name(program, model);
-}
-
-/// Refuses a checkpoint of this variant's other execution model, saying so and how to resume
-/// it (check_checkpoint_matches would only show two variant names).
-void check_execution_model(const glint::Checkpoint& checkpoint, const Program& program,
-                           ExecutionModel model, const std::string& file) {
-  const ExecutionModel other =
-      model == ExecutionModel::scalar ? ExecutionModel::wavefront : ExecutionModel::scalar;
-  if (checkpoint.key.variant != checkpoint_variant(program, other)) return;
-  throw glint::CheckpointError(
-      "cannot resume from " + file + ": it was made by the " +
-      std::string(execution_model_name(other)) + " renderer, this render is " +
-      std::string(execution_model_name(model)) +
-      " (their images differ in the last bits): resume it " +
-      (other == ExecutionModel::scalar ? "with" : "without") + " --scalar");
+/// "NAME, wavefront": how older checkpoints of the wavefront renderer name their variant. Its
+/// sums are the scalar renderer's bit for bit, so a key names the variant alone, and such a
+/// checkpoint is this variant's.
+std::string wavefront_checkpoint_variant(const Program& program) {
+  return renderer_name(program, ExecutionModel::wavefront);
 }
 
 }  // namespace
@@ -41,12 +24,13 @@ void check_execution_model(const glint::Checkpoint& checkpoint, const Program& p
 PassKeeper::PassKeeper(const Program& program, const Options& options,
                        const glint::RenderSettings& settings, std::uint64_t scene_hash)
     : program_(program), options_(options) {
-  const ExecutionModel model = execution_model(program, options);
+  // Either execution model continues a checkpoint of either: their sums are the same bits.
   if (options.checkpoint || options.resume)
-    key_ = glint::CheckpointKey::of(scene_hash, checkpoint_variant(program, model), settings);
+    key_ = glint::CheckpointKey::of(scene_hash, program.variant, settings);
   if (options.resume) {
     resumed_ = glint::read_checkpoint(*options.resume);
-    check_execution_model(*resumed_, program, model, *options.resume);
+    if (resumed_->key.variant == wavefront_checkpoint_variant(program))
+      resumed_->key.variant = program.variant;
     glint::check_checkpoint_matches(*resumed_, key_, *options.resume);
     last_passes_ = resumed_->passes_done;
     last_spp_ = resumed_->samples_per_pixel_done;

@@ -35,8 +35,7 @@ struct Program {
 // A chain variant (glint::WavefrontConfig: one lobe per bounce) has two renderers with the same
 // interface: WavefrontRenderer, which advances batches of paths stage by stage, and Renderer,
 // one path at a time. Both call the same ChainEstimator::step and give the same image bit for
-// bit; a run names the one it used, and a checkpoint belongs to one (its sums are the same, but
-// the check that a resume continues the same render stays strict).
+// bit; a run names the one it used, and a checkpoint of either continues with either.
 // Every other variant has only Renderer. Which renderer a run uses is decided here only
 // (execution_model; render_variant.hpp's with_renderer gives the renderer).
 

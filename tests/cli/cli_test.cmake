@@ -16,6 +16,11 @@ if(NOT TARGET glint-render)
 endif()
 set(glint_cli_scenes ${CMAKE_CURRENT_LIST_DIR}/scenes)
 
+# A checkpoint rewritten with another variant name, its hashes whole (tests/cli/checkpoint_forge.cpp):
+# an older checkpoint's name, or a hostile one.
+add_executable(glint-checkpoint-forge ${CMAKE_CURRENT_LIST_DIR}/checkpoint_forge.cpp)
+target_link_libraries(glint-checkpoint-forge PRIVATE glint::glint glint_project_options)
+
 function(glint_cli_test name)
   cmake_parse_arguments(arg "EXPECT_OUTPUT" "STATUS;STDERR;STDOUT;OUTPUT;PROGRAM" "ARGS" ${ARGN})
   if(NOT arg_PROGRAM)
@@ -236,9 +241,9 @@ if(GLINT_BASH)
 endif()
 
 # The execution model (tests/cli/execution_model_test.bash): --scalar renders a finite image of
-# the right size; the default and --scalar agree statistically; a checkpoint of one model is
-# refused by the other, naming the file; a variant without the wavefront renderer accepts
-# --scalar, which changes nothing. --help says what --scalar does for each kind of variant.
+# the right size; the default and --scalar agree statistically; a checkpoint of either model
+# resumes with either to the uninterrupted bytes; a variant without the wavefront renderer
+# accepts --scalar, which changes nothing. --help says what --scalar does for each kind of variant.
 glint_cli_test(help-scalar STATUS 0
                STDOUT "--scalar +render with the scalar renderer.*execution model: wavefront \\(the default\\), or scalar with --scalar"
                ARGS --help)
@@ -246,12 +251,13 @@ glint_cli_test(help-scalar-report PROGRAM glint-render-report STATUS 0
                STDOUT "--scalar +accepted, and changes nothing.*execution model: scalar \\(this variant's only one\\)"
                ARGS --help)
 if(GLINT_BASH)
-  foreach(case scalar_renders models_agree resume_other_model scalar_changes_nothing)
+  foreach(case scalar_renders models_agree resume_across_models scalar_changes_nothing)
     string(REPLACE "_" "-" name ${case})
     add_test(NAME "cli: ${name}"
              COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/execution_model_test.bash ${case}
                      $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
-                     ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
+                     ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>
+                     $<TARGET_FILE:glint-checkpoint-forge>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli)
   endforeach()
 endif()
