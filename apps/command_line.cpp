@@ -80,7 +80,8 @@ std::string usage(const Program& program) {
       program.has_wavefront ? kScalarHelpWavefront : kScalarHelpScalarOnly;
   std::string text;
   for (const std::string_view part :
-       {program.usage_line, std::string_view("\n\n"), program.description, std::string_view("\n\n"),
+       {std::string_view("usage: "), program.launcher, std::string_view(program.name),
+        std::string_view(" SCENE [options]\n\n"), program.description, std::string_view("\n\n"),
         kOptionsBeforeThreads, program.threads_help, scalar_help, kOptionsAfterThreads,
         program.extra_options, kOptionsLast, std::string_view("\n"), program.notes})
     text += part;
@@ -211,6 +212,7 @@ Options parse_options(int argc, char** argv, const Program& program, const Extra
     if (arg == "-h" || arg == "--help") {
       options.help = true;
       return options;
+
     } else if (arg == "-o" || arg == "--output") {
       options.output = image_path(arg, value(), "an 8-bit sRGB PNG", ".png");
     } else if (arg == "--hdr") {

@@ -3,6 +3,7 @@
 #include "failure.hpp"
 
 #include <exception>
+#include <new>
 
 #include "command_line.hpp"
 #include "glint/scene/scene_error.hpp"
@@ -19,6 +20,10 @@ Failure current_failure(const Program& program) {
     return {3, std::string(error.what()) + "\n"};
   } catch (const glint::SceneError& error) {
     return {1, std::string(error.what()) + "\n"};
+  } catch (const std::bad_alloc&) {
+    // What needed the memory is said where it is known (out_of_memory.hpp); elsewhere, not
+    // "std::bad_alloc".
+    return {1, std::string(program.name) + ": error: out of memory\n"};
   } catch (const std::exception& error) {
     return {1, std::string(program.name) + ": error: " + error.what() + "\n"};
   } catch (...) {

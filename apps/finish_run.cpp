@@ -9,6 +9,7 @@
 
 #include "glint/error.hpp"
 #include "glint/io/image_writer.hpp"
+#include "out_of_memory.hpp"
 #include "staged_outputs.hpp"
 #include "stop_signals.hpp"
 
@@ -78,9 +79,17 @@ int finish_run(const Program& program, const Options& options, const std::string
     result.sums = glint::PixelSums();
   }
 
-  std::vector<glint::FileContents> files{
-      {output, glint::encode_png(result.film, options.tone_mapping)}};
-  if (options.hdr) files.push_back({*options.hdr, glint::encode_pfm(result.film)});
+  const auto encoding = [&] {
+    return "encoding the images of " + std::to_string(settings.width) + "x" +
+           std::to_string(settings.height) + " pixels";
+  };
+  std::vector<glint::FileContents> files{{output, with_memory_for(encoding, [&] {
+                                            return glint::encode_png(result.film,
+                                                                     options.tone_mapping);
+                                          })}};
+  if (options.hdr)
+    files.push_back(
+        {*options.hdr, with_memory_for(encoding, [&] { return glint::encode_pfm(result.film); })});
 #ifdef GLINT_HAVE_EXR
   std::size_t clamped_halves = 0;
   if (options.exr) {

@@ -19,7 +19,9 @@
 #include <iostream>
 #include <span>
 #include <string>
+#include <string_view>
 
+#include "out_of_memory.hpp"
 #include "progress_printer.hpp"
 #include "render_command.hpp"
 #include "render_variant.hpp"
@@ -28,9 +30,15 @@ namespace {
 
 using glint::cli::Variant;
 
+/// The name the program was built as: glint-render, or glint-render-VARIANT (defined by the file
+/// apps/CMakeLists.txt generates for each variant).
+#ifndef GLINT_PROGRAM_NAME
+#define GLINT_PROGRAM_NAME "glint-render"
+#endif
+
 constexpr glint::cli::Program kProgram{
-    "glint-render",
-    "usage: glint-render SCENE [options]",
+    GLINT_PROGRAM_NAME,
+    "",
     "Renders SCENE (a glint scene file) with the path tracer and writes an image.",
     R"(  --threads N         worker threads (default: one per hardware thread); the image does
                       not depend on it
@@ -38,10 +46,11 @@ constexpr glint::cli::Program kProgram{
     "",
     R"(Progress with an estimated time left goes to stderr while rendering, then one summary line.
 The image is rendered in passes (1 sample per pixel, 2, 4, ... then 32 more at a time): the
-first SIGINT, SIGTERM or SIGHUP stops after the current pass and writes the image of the
-passes done, saying how many samples per pixel it holds; a second one exits at once (the
-same signal again within a second is the same stop: timeout and other supervisors signal
-the process and then its process group).
+first SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGALRM or SIGXCPU (a soft CPU-time limit, ulimit -St)
+stops after the current pass and writes the image of the passes done, saying how many samples
+per pixel it holds; a second one exits at once (the same signal again within a second is the
+same stop: timeout and other supervisors signal the process and then its process group; so is
+SIGXCPU, which the kernel repeats). A reader of stderr that goes away ends the progress only.
 Outputs are checked before rendering and written to new temporary files beside them, renamed
 into place only when all were written.
 Exit status: 0 on success (--time-limit included), 1 for a bad scene, an unwritable output,
@@ -49,14 +58,31 @@ a checkpoint that cannot be resumed or written at the end (the images are writte
 or a CPU without an instruction set this build uses,
 2 for bad options,
 3 for a valid scene that this variant cannot render (a shading kind it was built without),
-128 + the signal's number when a signal stopped the render (130 for SIGINT).
+128 + the signal's number when a signal stopped the render (130 for SIGINT, 129 SIGHUP,
+143 SIGTERM, 138 SIGUSR1, 142 SIGALRM, 152 SIGXCPU).
 )",
     Variant::info.name,
     glint::cli::kVariantHasWavefront,
     glint::cli::kProgramSimds,
     glint::cli::kVariantWavefrontLanes};
 
-constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
+// SIGUSR1, SIGALRM and SIGXCPU too: batch systems and `ulimit -t` use them to say that time is
+// up, and they would otherwise kill the render with nothing written.
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGALRM, SIGXCPU};
+
+/// The program's name in its messages: the name it was built as, or the one it was run as where
+/// that extends it with "-" and a name (glint-render-fast, a copy of glint-render).
+std::string program_name(const char* run_as) {
+  const std::string_view built = GLINT_PROGRAM_NAME;
+  std::string_view name = run_as ? run_as : "";
+  if (const std::size_t slash = name.rfind('/'); slash != std::string_view::npos)
+    name.remove_prefix(slash + 1);
+  const bool extends = name.size() > built.size() + 1 && name.size() <= 64 &&
+                       name.substr(0, built.size()) == built && name[built.size()] == '-' &&
+                       name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-",
+                                              built.size()) == std::string_view::npos;
+  return std::string(extends ? name : built);
+}
 
 }  // namespace
 
@@ -71,18 +97,21 @@ namespace {
 
 int run(int argc, char** argv) {
   namespace cli = glint::cli;
+  const std::string name = program_name(argc > 0 ? argv[0] : nullptr);
+  cli::Program program = kProgram;
+  program.name = name.c_str();
   cli::Options options;
   glint::Simd simd;
   try {
-    options = cli::parse_options(argc, argv, kProgram);
-    simd = cli::run_simd(kProgram, options);
+    options = cli::parse_options(argc, argv, program);
+    simd = cli::run_simd(program, options);
   } catch (const cli::UsageError&) {
-    const cli::Failure failure = cli::current_failure(kProgram);
+    const cli::Failure failure = cli::current_failure(program);
     std::cerr << failure.message;
     return failure.status;
   }
   if (options.help) {
-    std::cout << cli::help_text(kProgram);
+    std::cout << cli::help_text(program);
     return 0;
   }
   if (simd != glint::kCompiledSimd) {
@@ -96,11 +125,11 @@ int run(int argc, char** argv) {
         return glint_render_avx512(argc, argv);
     }
 #endif
-    std::cerr << kProgram.name << ": error: no renderer for --simd " << glint::simd_name(simd)
+    std::cerr << program.name << ": error: no renderer for --simd " << glint::simd_name(simd)
               << " in this program\n";
     return 1;
   }
-  cli::install_signal_handlers(kProgram.name, kStopSignals);
+  cli::install_signal_handlers(program.name, kStopSignals);
   try {
     const std::string output = cli::check_outputs(options);
     const cli::LoadedScene loaded =
@@ -108,19 +137,23 @@ int run(int argc, char** argv) {
     const glint::Scene& scene = loaded.scene;
     glint::check_supported<Variant>(scene);
     const glint::RenderSettings settings = cli::render_settings(options, scene);
-    cli::PassKeeper keeper(kProgram, options, settings, loaded.text_hash);
+    cli::PassKeeper keeper(program, options, settings, loaded.text_hash);
 
     const glint::RenderControl control{cli::ProgressPrinter(!options.quiet), keeper.callback(),
                                        &cli::stop_requested, options.checkpoint.has_value()};
-    glint::RenderResult result = cli::with_renderer<Variant>(
-        cli::execution_model(kProgram, options), [&]<typename Renderer>() {
-          return Renderer::render(scene, settings, control, keeper.start());
+    glint::RenderResult result = cli::with_memory_for(
+        [&] { return cli::image_memory(settings, options.resume.has_value()); },
+        [&] {
+          return cli::with_renderer<Variant>(
+              cli::execution_model(program, options), [&]<typename Renderer>() {
+                return Renderer::render(scene, settings, control, keeper.start());
+              });
         });
     const std::string workers = std::to_string(result.stats.threads) + " threads";
-    return cli::finish_run(kProgram, options, output, settings, std::move(result), keeper,
+    return cli::finish_run(program, options, output, settings, std::move(result), keeper,
                            {workers, ""});
   } catch (...) {
-    const cli::Failure failure = cli::current_failure(kProgram);
+    const cli::Failure failure = cli::current_failure(program);
     std::cerr << failure.message;
     return failure.status;
   }

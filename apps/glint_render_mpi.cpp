@@ -61,7 +61,7 @@ namespace mpi = glint::cli::mpi;
 
 constexpr cli::Program kProgram{
     "glint-render-mpi",
-    "usage: mpirun -n N glint-render-mpi SCENE [options]",
+    "mpirun -n N ",
     R"(Renders SCENE (a glint scene file) with the path tracer on N processes (MPI ranks, on one
 machine or several) and writes the image glint-render writes with the same options, bit for
 bit, whatever the number of ranks and threads. Rank 0 reads SCENE and sends it to the others,

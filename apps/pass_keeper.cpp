@@ -6,7 +6,9 @@
 #include <string>
 
 #include "glint/error.hpp"
+#include "out_of_memory.hpp"
 #include "staged_outputs.hpp"
+#include "untrusted_text.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
@@ -28,9 +30,17 @@ PassKeeper::PassKeeper(const Program& program, const Options& options,
   if (options.checkpoint || options.resume)
     key_ = glint::CheckpointKey::of(scene_hash, program.variant, settings);
   if (options.resume) {
-    resumed_ = glint::read_checkpoint(*options.resume);
+    const std::string& file = *options.resume;
+    resumed_ = with_memory_for([&] { return "reading the checkpoint " + file; },
+                               [&] { return glint::read_checkpoint(file); });
     if (resumed_->key.variant == wavefront_checkpoint_variant(program))
       resumed_->key.variant = program.variant;
+    // Named here rather than by check_checkpoint_matches: the name is the file's, which anyone
+    // may have written, so it is shown escaped.
+    if (resumed_->key.variant != key_.variant)
+      throw glint::CheckpointError("cannot resume from " + file + ": it was made by variant '" +
+                                   escaped(resumed_->key.variant) + "', this is variant '" +
+                                   key_.variant + "'");
     glint::check_checkpoint_matches(*resumed_, key_, *options.resume);
     last_passes_ = resumed_->passes_done;
     last_spp_ = resumed_->samples_per_pixel_done;

@@ -17,7 +17,7 @@ namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 /// What tells the programs apart in their messages and their usage text.
 struct Program {
   const char* name;                ///< "glint-render": the prefix of every message
-  std::string_view usage_line;     ///< "usage: glint-render SCENE [options]"
+  std::string_view launcher;       ///< what runs it, before its name: "", "mpirun -n N "
   std::string_view description;    ///< the paragraph after it
   std::string_view threads_help;   ///< the --threads lines of the options
   std::string_view extra_options;  ///< the program's own options, before --quiet

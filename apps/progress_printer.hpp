@@ -53,6 +53,12 @@ class ProgressPrinter {
                  int(fraction * 100.0), format_seconds(p.elapsed_seconds).c_str(), eta.c_str(),
                  terminal_ && !done ? "" : "\n");
     std::fflush(stderr);
+    // The reader of stderr went away (`glint-render ... 2>&1 | head`; SIGPIPE is ignored, so
+    // the write failed with EPIPE): progress is a side channel, the render goes on without it.
+    if (std::ferror(stderr)) {
+      enabled_ = false;
+      std::clearerr(stderr);
+    }
   }
 
  private:

@@ -9,11 +9,14 @@
 #include "glint/io/scene_reader.hpp"
 #include "glint/scene/image_settings.hpp"
 #include "load_progress.hpp"
+#include "out_of_memory.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
 std::string scene_file_text(LoadProgress& loading, const std::string& file) {
-  return glint::read_scene_file_text(file, loading.reader_callback());
+  return with_memory_for(
+      [&] { return "reading the scene " + file; },
+      [&] { return glint::read_scene_file_text(file, loading.reader_callback()); });
 }
 
 std::uint64_t scene_text_hash(std::string_view text) {
@@ -21,11 +24,17 @@ std::uint64_t scene_text_hash(std::string_view text) {
 }
 
 glint::Scene parse_and_build(LoadProgress& loading, std::string text, const std::string& source) {
-  const glint::SceneDescription description =
-      glint::read_scene_text(text, source, loading.reader_callback());
+  const glint::SceneDescription description = with_memory_for(
+      [&] { return "parsing the scene " + source + " (" + byte_size(double(text.size())) + ")"; },
+      [&] { return glint::read_scene_text(text, source, loading.reader_callback()); });
   std::string().swap(text);
   loading.building(description.spheres.size());
-  glint::Scene built = glint::Scene::build(description);
+  glint::Scene built = with_memory_for(
+      [&] {
+        return "building the scene " + source + " (" + std::to_string(description.spheres.size()) +
+               " spheres)";
+      },
+      [&] { return glint::Scene::build(description); });
   loading.finished(built.sphere_count());
   return built;
 }

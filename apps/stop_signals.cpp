@@ -35,7 +35,7 @@ constexpr std::int64_t kRepeatedSignalWindow = 1'000'000'000;
 constexpr int kMaxTemporaries = 4;  // the PNG, the PFM, the EXR and the checkpoint
 char temporaries[kMaxTemporaries][PATH_MAX];
 std::atomic<int> temporary_count{0};
-constexpr int kMaxStopSignals = 4;
+constexpr int kMaxStopSignals = 8;
 int stop_signals[kMaxStopSignals];
 int stop_signal_count = 0;
 char second_signal_message[128];
@@ -53,6 +53,10 @@ const char* signal_name(int signal) {
       return "SIGHUP";
     case SIGUSR1:
       return "SIGUSR1";
+    case SIGALRM:
+      return "SIGALRM";
+    case SIGXCPU:
+      return "SIGXCPU";
     default:
       return "a signal";
   }
@@ -101,9 +105,12 @@ static void on_stop_signal(int signal) {
     return;
   }
   // The same signal while the first one's handler is still noting its time, or soon after it:
-  // another copy of the same stop.
+  // another copy of the same stop. SIGXCPU is always the same stop: past a soft CPU limit the
+  // kernel sends it again every second of CPU time.
   const std::int64_t first_time = first_stop_time.load();
-  if (first == signal && (first_time == 0 || time - first_time < kRepeatedSignalWindow)) return;
+  if (first == signal &&
+      (signal == SIGXCPU || first_time == 0 || time - first_time < kRepeatedSignalWindow))
+    return;
   for (int i = 0, n = temporary_count.load(); i < n; ++i)
     unlink(temporaries[i]);
   [[maybe_unused]] const ssize_t written =
@@ -133,6 +140,9 @@ void install_signal_handlers(const char* program, std::span<const int> signals) 
   // Past `ulimit -f`, write() then fails with EFBIG and the temporary is removed; by default
   // the signal would kill the process and leave the temporary behind.
   std::signal(SIGXFSZ, SIG_IGN);
+  // A reader of stderr that goes away (`| head`) must not end the render: the write fails with
+  // EPIPE instead, and the progress stops (progress_printer.hpp).
+  std::signal(SIGPIPE, SIG_IGN);
 }
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE::cli

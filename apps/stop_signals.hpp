@@ -2,7 +2,8 @@
 // The stop signals of glint-render and glint-render-mpi. The first stop signal stops after the
 // current pass and writes the image of the passes done; a second one removes the temporaries
 // being written and exits at once: another signal, or the same one a second or more after the
-// first (supervisors such as `timeout` send the process and its process group one copy each).
+// first (supervisors such as `timeout` send the process and its process group one copy each),
+// except SIGXCPU, which the kernel repeats every second past a soft CPU-time limit.
 
 #include <signal.h>
 
@@ -17,7 +18,7 @@ namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 /// Set by the first stop signal: the render's RenderControl::stop.
 extern std::atomic<bool> stop_requested;
 
-/// Makes `signals` (at most 4) stop the render; `program` names the message of a second one.
+/// Makes `signals` (at most 8) stop the render; `program` names the message of a second one.
 void install_signal_handlers(const char* program, std::span<const int> signals);
 
 /// The first stop signal received, or 0.

@@ -171,6 +171,23 @@ else()
            "glint/samplesPerPixelRequested \\(int\\) = <64>" " 1 of 64 samples per pixel")
 endif()
 
+# Each program names itself in its messages: the name it was built as (glint-render-report), or
+# for glint-render-DEFAULT, a copy of glint-render, the name it was run as.
+glint_cli_test(program-name-variant PROGRAM glint-render-report STATUS 2
+               STDERR "^glint-render-report: unknown option '--frobnicate'.Run 'glint-render-report --help' for the options"
+               ARGS ${glint_cli_scenes}/tiny.scene --frobnicate)
+glint_cli_test(program-name-help PROGRAM glint-render-report STATUS 0
+               STDOUT "^usage: glint-render-report SCENE \\[options\\]" ARGS --help)
+string(REPLACE "_" "-" glint_default_dashed ${GLINT_DEFAULT_VARIANT})
+add_test(NAME "cli: program-name-copy"
+         COMMAND ${CMAKE_COMMAND}
+                 -DPROGRAM=$<TARGET_FILE_DIR:glint-render>/glint-render-${glint_default_dashed}
+                 "-DARGS=${glint_cli_scenes}/tiny.scene|--frobnicate" -DEXPECT_STATUS=2
+                 "-DEXPECT_STDERR=^glint-render-${glint_default_dashed}: unknown option '--frobnicate'.Run 'glint-render-${glint_default_dashed} --help'"
+                 -DSCRATCH=${PROJECT_BINARY_DIR}/cli-test/program-name-copy
+                 -P ${CMAKE_CURRENT_LIST_DIR}/run_cli.cmake)
+set_tests_properties("cli: program-name-copy" PROPERTIES LABELS cli)
+
 glint_cli_test(bad-time-limit STATUS 2 STDERR "--time-limit expects seconds from 0 to 1e9, got '-1'"
                ARGS ${glint_cli_scenes}/tiny.scene --time-limit -1)
 glint_cli_test(bad-checkpoint-interval STATUS 2
@@ -195,7 +212,7 @@ glint_cli_test(quiet STATUS 0 STDERR "^$" STDOUT "^$" EXPECT_OUTPUT OUTPUT tiny.
 # 160 x 96 pixels (60 tiles), 3 samples each: 46080 samples, printed with %.3g.
 function(glint_cli_progress_test name program variant)
   string(REPLACE ";" "|" joined_args "${ARGN}")
-  set(summary "^glint-render \\(${variant}, [a-z0-9]+, (one path at a time|[0-9]+ paths at once)\\): ")
+  set(summary "^${program} \\(${variant}, [a-z0-9]+, (one path at a time|[0-9]+ paths at once)\\): ")
   string(APPEND summary "[^ ]*tiny\\.scene -> out\\.png: 160x96, 3 spp, ")
   string(APPEND summary "depth 2 in [0-9]+\\.[0-9][0-9] s on [12] threads: 4\\.61e\\+04 samples, ")
   string(APPEND summary "[0-9]+\\.[0-9] Mrays/s$")
@@ -224,14 +241,15 @@ if(GLINT_BASH)
           scene_is_output threads_fail checkpoint_resume checkpoint_after_kill resume_refused
           time_limit_zero huge_values checkpoint_fails_complete checkpoint_fails_time_limit
           checkpoint_fails_sigint checkpoint_directory_vanishes long_second_name
-          checkpoint_exists stale_temporaries)
+          checkpoint_exists stale_temporaries sigusr1 sigalrm sigxcpu repeated_sigxcpu
+          progress_reader_closes out_of_memory)
     string(REPLACE "_" "-" name ${case})
     add_test(NAME "cli: ${name}"
              COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash ${case}
                      $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
                      ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli SKIP_RETURN_CODE 77)
-    if(case MATCHES "^(checkpoint_resume|checkpoint_after_kill|group_signal)$")
+    if(case MATCHES "^(checkpoint_resume|checkpoint_after_kill|group_signal|repeated_sigxcpu)$")
       set_tests_properties("cli: ${name}" PROPERTIES LABELS "cli;long")
     endif()
     if(GLINT_SANITIZE)
@@ -251,7 +269,8 @@ glint_cli_test(help-scalar-report PROGRAM glint-render-report STATUS 0
                STDOUT "--scalar +accepted, and changes nothing.*execution model: scalar \\(this variant's only one\\)"
                ARGS --help)
 if(GLINT_BASH)
-  foreach(case scalar_renders models_agree resume_across_models scalar_changes_nothing)
+  foreach(case scalar_renders models_agree resume_across_models scalar_changes_nothing
+          forged_variant)
     string(REPLACE "_" "-" name ${case})
     add_test(NAME "cli: ${name}"
              COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/execution_model_test.bash ${case}

@@ -94,6 +94,23 @@ case_resume_across_models() {
   done
 }
 
+# A checkpoint whose variant name holds a newline and a terminal escape sequence (anyone may
+# write the file): refused, with the name escaped on one line, no control byte printed.
+case_forged_variant() {
+  local options=(--width 40 --height 30 --spp 64 --max-depth 3 -o out.png)
+  "$program" "$scene" "${options[@]}" --time-limit 0 --checkpoint made.ck --quiet ||
+    fail "making the checkpoint failed (status $?)"
+  "$forge" made.ck forged.ck $'fast\n\e[31mred\\' || fail "forging the checkpoint failed"
+  rm -f out.png
+  "$program" "$scene" "${options[@]}" --resume forged.ck 2>err.log
+  local status=$?
+  ((status == 1)) || fail "exit status $status, expected 1"
+  [[ $(cat err.log) == "glint-render: error: cannot resume from forged.ck: it was made by variant 'fast\x0a\x1b[31mred\x5c', this is variant '"*"'" ]] ||
+    fail "the message does not show the name escaped"
+  ! LC_ALL=C grep -q $'\e' err.log || fail "an escape byte reached stderr"
+  [[ ! -e out.png ]] || fail "an image was written"
+}
+
 # A variant without the wavefront renderer: --scalar is accepted and changes nothing, and its
 # summary says scalar either way.
 case_scalar_changes_nothing() {

@@ -107,6 +107,58 @@ interrupted_once() { # SIGNAL STATUS
 case_sigint() { interrupted_once INT 130; }
 case_sigterm() { interrupted_once TERM 143; }
 case_sighup() { interrupted_once HUP 129; }
+# Batch systems' and CPU limits' ways of saying that time is up: stops too, not deaths.
+case_sigusr1() { interrupted_once USR1 138; }
+case_sigalrm() { interrupted_once ALRM 142; }
+case_sigxcpu() { interrupted_once XCPU 152; }
+
+# Past a soft CPU-time limit (ulimit -St) the kernel sends SIGXCPU again every second of CPU
+# time: the copies after the first are the same stop, not a second signal.
+case_repeated_sigxcpu() {
+  start_long_render
+  kill -s XCPU "$pid"
+  sleep 1.2
+  kill -s XCPU "$pid" 2>/dev/null
+  wait "$pid"
+  local status=$?
+  ((status == 152)) || fail "exit status $status, expected 152"
+  ! grep -q "a second stop signal" err.log || fail "a repeated SIGXCPU was a second stop"
+  grep -q "^glint-render: stopped by SIGXCPU: out\.png holds" err.log || fail "no stop message"
+  complete_png out.png
+  complete_pfm out.pfm "$long_width" "$long_height"
+  no_temporaries
+}
+
+# Progress is a side channel: a reader of stderr that goes away (`glint-render ... 2>&1 | head`)
+# ends the progress, not the render. The reader takes the first line and exits while the render
+# has seconds to go; the images are written whole and the status is 0.
+case_progress_reader_closes() {
+  { "$program" "$scene" "${long_render[@]}" --spp 256 2>&1 >/dev/null; echo $? >status; } |
+    head -n 1 >first.log
+  local status
+  status=$(cat status)
+  ((status == 0)) || fail "exit status $status, expected 0 (141: killed by SIGPIPE)"
+  grep -q '^\[ *[0-9]*%\]' first.log || fail "the reader got no progress line: $(cat first.log)"
+  complete_png out.png
+  complete_pfm out.pfm "$long_width" "$long_height"
+  no_temporaries
+}
+
+# Memory that cannot be had (`ulimit -v`, 1 GB; the image's sums alone are 1.6 GB): the message
+# says what needed it and how much, and nothing is written. Status 77 where the limit cannot be
+# set or the program cannot run under it at all (a sanitizer's shadow memory).
+case_out_of_memory() {
+  (ulimit -v 1000000 && "$program" --help >/dev/null 2>&1) || exit 77
+  local err status
+  err=$(ulimit -v 1000000 && "$program" "$scene" -o out.png --width 32768 --height 2048 --spp 1 2>&1)
+  status=$?
+  ((status == 1)) || fail "exit status $status, expected 1: $err"
+  [[ $err == *"glint-render: error: out of memory for the image of 32768x2048 pixels: rendering it needs about 2.42 GB (36 bytes a pixel: its sums, its film)"* ]] ||
+    fail "unexpected message: $err"
+  [[ $err != *bad_alloc* ]] || fail "the message names std::bad_alloc: $err"
+  [[ ! -e out.png ]] || fail "out.png was written"
+  no_temporaries
+}
 
 # A supervisor's stop: SIGTERM to the process and at once to its process group (the job
 # control of start_long_render makes the render its group's leader), as `timeout`, systemd and
@@ -426,7 +478,7 @@ case_resume_refused() {
     "$scene" "${long_render[@]}" --seed 7 --resume ck.glint
   if [[ -n $other_program ]]; then
     program=$other_program refused_before_render \
-      "^glint-render: error: cannot resume from ck\.glint: it was made by variant '[a-z_]+(, wavefront)?', this is variant 'report'$" \
+      "^glint-render-report: error: cannot resume from ck\.glint: it was made by variant '[a-z_]+', this is variant 'report'$" \
       "$scene" "${long_render[@]}" --resume ck.glint
   fi
   head -c 100 ck.glint >short.glint
