@@ -71,7 +71,13 @@ constexpr std::string_view kScalarHelpScalarOnly =
                       follow one lobe per bounce)
 )";
 
-constexpr std::string_view kOptionsLast = R"(  --quiet             no progress or summary on stderr
+constexpr std::string_view kOptionsLast =
+    R"(  --stats-json FILE   also write the run's figures (time, rays, Mrays/s, samples, NaN count,
+                      threads, instruction set, variant...) as JSON, FILE ending in .json,
+                      with the images
+  --quiet             no progress or summary on stderr
+  --list-simd         print the instruction sets (--simd) this program holds and this CPU
+                      runs, one a line, narrowest first, and exit
   -h, --help          this help
 )";
 
@@ -212,7 +218,9 @@ Options parse_options(int argc, char** argv, const Program& program, const Extra
     if (arg == "-h" || arg == "--help") {
       options.help = true;
       return options;
-
+    } else if (arg == "--list-simd") {
+      options.list_simd = true;
+      return options;
     } else if (arg == "-o" || arg == "--output") {
       options.output = image_path(arg, value(), "an 8-bit sRGB PNG", ".png");
     } else if (arg == "--hdr") {
@@ -229,6 +237,8 @@ Options parse_options(int argc, char** argv, const Program& program, const Extra
                        "--exr is not available: install it (scripts/install-deps --exr) and "
                        "build glint again"};
 #endif
+    } else if (arg == "--stats-json") {
+      options.stats_json = image_path(arg, value(), "JSON", ".json");
     } else if (arg == "--exr-half") {
       options.exr_half = true;
     } else if (arg == "--spp") {

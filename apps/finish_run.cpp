@@ -11,6 +11,7 @@
 #include "glint/io/image_writer.hpp"
 #include "out_of_memory.hpp"
 #include "staged_outputs.hpp"
+#include "stats_json.hpp"
 #include "stop_signals.hpp"
 
 // GLINT_HAVE_EXR: the library links glint::exr (apps/CMakeLists.txt, when OpenEXR is found).
@@ -101,6 +102,11 @@ int finish_run(const Program& program, const Options& options, const std::string
     files.push_back({*options.exr, std::move(exr.bytes)});
   }
 #endif
+  if (options.stats_json) {
+    const std::string json = stats_json(program, options, output, settings, result,
+                                        {report.ranks, signal, keeper.time_is_up()});
+    files.push_back({*options.stats_json, std::vector<char>(json.begin(), json.end())});
+  }
   std::vector<StagedOutput> images;
   for (const glint::FileContents& file : files)
     images.push_back({file.path, [&file](glint::StagedFile& staged) { staged.write(file.bytes); }});

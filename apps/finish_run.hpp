@@ -18,6 +18,8 @@ struct RunReport {
   std::string workers;
   /// Lines printed after the summary line (unless --quiet), each ending in a newline.
   std::string after_summary;
+  /// The processes that rendered (glint-render-mpi's ranks), for --stats-json.
+  int ranks = 1;
 };
 
 /// Writes the run's checkpoint (from `result.sums`, then freed), then its images (together or

@@ -114,6 +114,10 @@ int run(int argc, char** argv) {
     std::cout << cli::help_text(program);
     return 0;
   }
+  if (options.list_simd) {
+    std::cout << cli::runnable_simd_list(program);
+    return 0;
+  }
   if (simd != glint::kCompiledSimd) {
 #if defined(GLINT_RENDER_SIMD_SETS)
     switch (simd) {

@@ -138,6 +138,10 @@ std::optional<int> read_command_line(const mpi::World& world, int argc, char** a
     if (world.rank == 0) std::cout << cli::help_text(kProgram);
     return 0;
   }
+  if (options.list_simd) {
+    if (world.rank == 0) std::cout << cli::runnable_simd_list(kProgram);
+    return 0;
+  }
   return std::nullopt;
 }
 
@@ -226,7 +230,7 @@ int render_on_rank0(const mpi::World& world, const cli::Options& options,
     if (mpi_options.verbose)
       lines += mpi::load_line(world, loaded.times, mpi_options.scene_everywhere);
     return cli::finish_run(kProgram, options, output, settings, std::move(result), keeper,
-                           {coordinator.workers(), lines});
+                           {coordinator.workers(), lines, world.size});
   } catch (const glint::ImageWriteError&) {
     // The render is over and every rank has ended its work: only rank 0 fails.
     const cli::Failure failure = cli::current_failure(kProgram);

@@ -16,6 +16,13 @@ std::string simd_list(std::span<const glint::Simd> simds) {
   return list;
 }
 
+std::string runnable_simd_list(const Program& program) {
+  std::string list;
+  for (const glint::Simd simd : program.simds)
+    if (cpu_runs(simd)) list += std::string(glint::simd_name(simd)) + "\n";
+  return list;
+}
+
 bool cpu_runs(glint::Simd simd) {
 #if defined(__x86_64__) || defined(__i386__)
   __builtin_cpu_init();

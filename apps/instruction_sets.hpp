@@ -23,4 +23,8 @@ glint::Simd run_simd(const Program& program, const Options& options);
 /// "scalar, avx2, avx512".
 std::string simd_list(std::span<const glint::Simd> simds);
 
+/// What --list-simd prints: the instruction sets the program holds that this CPU runs, one a
+/// line, narrowest first ("scalar\navx2\n").
+std::string runnable_simd_list(const Program& program);
+
 }  // namespace glint::inline GLINT_ISA_NAMESPACE::cli

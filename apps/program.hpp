@@ -48,6 +48,7 @@ struct Options {
   glint::ToneMapping tone_mapping;
   std::optional<std::string> exr;
   bool exr_half = false;
+  std::optional<std::string> stats_json;  ///< --stats-json: the run's figures as JSON
   std::optional<int> spp, max_depth, width, height, threads;
   std::uint64_t seed = 0;
   bool scalar = false;  ///< --scalar: Renderer, where the variant also has WavefrontRenderer
@@ -56,7 +57,8 @@ struct Options {
   double checkpoint_interval = 60.0;
   std::optional<double> time_limit;
   bool quiet = false;
-  bool help = false;  ///< -h or --help: nothing after it was read
+  bool help = false;       ///< -h or --help: nothing after it was read
+  bool list_simd = false;  ///< --list-simd: nothing after it was read
 };
 
 /// The run's execution model: wavefront where the variant has it, unless --scalar.

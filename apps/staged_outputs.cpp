@@ -65,6 +65,7 @@ std::string check_outputs(const Options& options) {
   check_output(output, options.scene);
   if (options.hdr) check_output(*options.hdr, options.scene);
   if (options.exr) check_output(*options.exr, options.scene);
+  if (options.stats_json) check_output(*options.stats_json, options.scene);
   if (options.checkpoint) {
     check_output(*options.checkpoint, options.scene);
     // The files are renamed into place together: one would silently replace the other.
@@ -76,6 +77,9 @@ std::string check_outputs(const Options& options) {
       if (image && resolved(*image) == resolved(*options.checkpoint))
         throw glint::ImageWriteError("cannot write the checkpoint " + *options.checkpoint +
                                      ": it is also the image " + *image);
+    if (options.stats_json && resolved(*options.stats_json) == resolved(*options.checkpoint))
+      throw glint::ImageWriteError("cannot write the checkpoint " + *options.checkpoint +
+                                   ": it is also the --stats-json file");
     // A checkpoint is replaced only by the render it holds, continued: a run repeated without
     // --resume would replace the passes of hours with those of minutes.
     std::error_code error;
@@ -89,7 +93,7 @@ std::string check_outputs(const Options& options) {
   }
   // What a run killed while writing (kill -9 during a checkpoint) left beside the targets.
   for (const std::optional<std::string>& target :
-       {std::optional(output), options.hdr, options.exr, options.checkpoint})
+       {std::optional(output), options.hdr, options.exr, options.stats_json, options.checkpoint})
     if (target) glint::remove_stale_temporaries(*target);
   return output;
 }

@@ -32,7 +32,7 @@ std::atomic<std::int64_t> first_stop_time{0};
 /// `timeout`, systemd and job schedulers signal the process and then its process group, so
 /// the process gets two copies at once.
 constexpr std::int64_t kRepeatedSignalWindow = 1'000'000'000;
-constexpr int kMaxTemporaries = 4;  // the PNG, the PFM, the EXR and the checkpoint
+constexpr int kMaxTemporaries = 5;  // the PNG, the PFM, the EXR, the stats and the checkpoint
 char temporaries[kMaxTemporaries][PATH_MAX];
 std::atomic<int> temporary_count{0};
 constexpr int kMaxStopSignals = 8;

@@ -40,9 +40,9 @@ class BlockStopSignals {
   sigset_t previous_;
 };
 
-/// Adds a temporary file to those a second signal removes (at most 4: the PNG, the PFM, the
-/// EXR and the checkpoint); false, and nothing added, for a path too long to keep. Call with
-/// the stop signals blocked.
+/// Adds a temporary file to those a second signal removes (at most 5: the PNG, the PFM, the
+/// EXR, the stats and the checkpoint); false, and nothing added, for a path too long to keep. Call
+/// with the stop signals blocked.
 bool note_temporary(const std::string& path);
 
 /// Forgets the temporaries noted, once they are renamed or removed.

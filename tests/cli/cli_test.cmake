@@ -188,6 +188,51 @@ add_test(NAME "cli: program-name-copy"
                  -P ${CMAKE_CURRENT_LIST_DIR}/run_cli.cmake)
 set_tests_properties("cli: program-name-copy" PROPERTIES LABELS cli)
 
+# --stats-json (tests/cli/check_stats_json.cmake): the figures as JSON, written with the images:
+# 24x16 pixels of tiny.scene at 3 samples each are 1152 samples; stopped by --time-limit 0, the
+# first pass's 1 sample each, 384.
+function(glint_cli_stats_test name)
+  cmake_parse_arguments(arg "" "PROGRAM;STATUS" "ARGS;EXPECT" ${ARGN})
+  string(REPLACE ";" "|" joined_args "${arg_ARGS}")
+  string(REPLACE ";" "@@" joined_expect "${arg_EXPECT}")
+  add_test(NAME "cli: ${name}"
+           COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:${arg_PROGRAM}> "-DARGS=${joined_args}"
+                   "-DEXPECT=${joined_expect}" -DEXPECT_STATUS=${arg_STATUS}
+                   -DSCRATCH=${PROJECT_BINARY_DIR}/cli-test/${name}
+                   -P ${CMAKE_CURRENT_LIST_DIR}/check_stats_json.cmake)
+  set_tests_properties("cli: ${name}" PROPERTIES LABELS cli)
+endfunction()
+glint_cli_stats_test(stats-json PROGRAM glint-render STATUS 0
+  ARGS ${glint_cli_scenes}/tiny.scene -o out.png --spp 3 --threads 1 --seed 5 --max-depth 2
+       --stats-json stats.json
+  EXPECT "program=glint-render" "variant~^[a-z_]+$" "execution_model~^(wavefront|scalar)$"
+         "simd~^(avx512|avx2|scalar)$" "paths_at_once~^(1|8|16)$" "scene~tiny\\.scene$"
+         "output=out.png" "width=24" "height=16" "samples_per_pixel=3"
+         "samples_per_pixel_requested=3" "passes_done=3" "pass_count=3" "max_depth=2" "seed=5"
+         "ranks=1" "threads=1" "samples=1152" "rays~^[1-9][0-9]*$" "invalid_samples=0"
+         "clamped_pixels=0" "complete=ON" "stopped_by=TYPE:NULL" "time_limit_reached=OFF"
+         "version~^[0-9]+\\.[0-9]+\\.[0-9]+$")
+glint_cli_stats_test(stats-json-time-limit PROGRAM glint-render-report STATUS 0
+  ARGS ${glint_cli_scenes}/tiny.scene -o out.png --spp 64 --time-limit 0 --scalar
+       --stats-json stats.json
+  EXPECT "program=glint-render-report" "variant=report" "execution_model=scalar"
+         "paths_at_once=1" "samples_per_pixel=1" "samples_per_pixel_requested=64"
+         "passes_done=1" "pass_count=7" "samples=384" "complete=OFF" "time_limit_reached=ON")
+glint_cli_test(stats-json-not-json STATUS 2
+               STDERR "--stats-json writes JSON: the file name must end in .json, got 'stats.txt'"
+               ARGS ${glint_cli_scenes}/tiny.scene --stats-json stats.txt)
+# A failed run writes no figures, as it writes no image.
+glint_cli_test(stats-json-failed-run STATUS 1 STDERR "overlapping-glass.scene:[0-9]+: error"
+               ARGS ${glint_cli_scenes}/overlapping-glass.scene -o out.png --stats-json out.json
+               OUTPUT out.json)
+# --list-simd: the instruction sets glint-render holds that this CPU runs, narrowest first;
+# with GLINT_SIMD_DISPATCH x86-64's (scalar) always, else the one it was compiled for.
+if(GLINT_SIMD_DISPATCH)
+  glint_cli_test(list-simd STATUS 0 STDOUT "^scalar\n(avx2\n(avx512\n)?)?$" ARGS --list-simd)
+else()
+  glint_cli_test(list-simd STATUS 0 STDOUT "^(scalar|avx2|avx512)\n$" ARGS --list-simd)
+endif()
+
 glint_cli_test(bad-time-limit STATUS 2 STDERR "--time-limit expects seconds from 0 to 1e9, got '-1'"
                ARGS ${glint_cli_scenes}/tiny.scene --time-limit -1)
 glint_cli_test(bad-checkpoint-interval STATUS 2
