@@ -31,7 +31,6 @@ using glint::FloatLanes;
 using glint::IntLanes;
 using glint::kLaneCount;
 using glint::Vec2;
-using glint::Vec2Lanes;
 using glint::Vec3;
 using glint::Vec3Lanes;
 

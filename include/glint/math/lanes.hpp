@@ -141,12 +141,6 @@ inline IntLanes rotated_order(IntLanes packing, int at) {
   return permute(packing, (lane_indices() - at) & (kLaneCount - 1));
 }
 
-/// bits_to_unit_float lane by lane: the top 24 bits as a float in [0, 1), exactly.
-inline FloatLanes unit_floats(UintLanes bits) {
-  return __builtin_convertvector(std::bit_cast<IntLanes>(bits >> 8), FloatLanes) * 0x1p-24f;
-}
-
-using Vec2Lanes = Vector2<FloatLanes>;
 /// Eight 3-vectors, one per lane, in structure-of-arrays form.
 using Vec3Lanes = Vector3<FloatLanes>;
 

@@ -59,9 +59,6 @@ struct LaneTypes<16> {
 };
 }  // namespace detail
 
-/// The widths glint's physics is instantiated at.
-inline constexpr int kWidths[] = {1, 8, 16};
-
 template <int W>
 using Float = typename detail::LaneTypes<W>::Float;
 template <int W>
