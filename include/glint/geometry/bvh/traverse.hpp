@@ -210,9 +210,9 @@ template <bool kAnyHit, LeafTest TestLeaf>
 /// reach before `best`; returns whether any call found a hit. With kAnyHit it returns at the
 /// first such hit. The next node is next_node's.
 ///
-/// Always inlined: left to itself, GCC keeps the traversal out of line in the path tracer,
-/// which changes the code it generates around the call there (which products it fuses into
-/// FMAs), and with it the rendered images in their last bits.
+/// Always inlined, for speed: left to itself GCC keeps it out of line, and a render of 300
+/// random spheres took 7.5% more instructions at --simd avx2 and 3.3% more at scalar
+/// (callgrind, glint-render 64x64, 4 spp). The images are the same either way.
 template <bool kAnyHit, LeafTest TestLeaf>
 [[gnu::always_inline]] inline bool traverse(const std::vector<WideNode>& nodes, const Ray& ray,
                                             SphereHit& best, TestLeaf&& test_leaf) {
