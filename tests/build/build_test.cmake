@@ -7,6 +7,7 @@
 # - Every test has a timeout, so that a hang fails that test instead of stalling the run.
 add_test(NAME "build: each named renderer is compiled once, in glint-renderers"
          COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DNM=${CMAKE_NM}
+                 -DLIBRARY=$<TARGET_FILE:glint-renderers>
                  -P ${CMAKE_CURRENT_LIST_DIR}/renderers_compiled_once.cmake)
 add_test(NAME "build: every test has a timeout"
          COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DCTEST=${CMAKE_CTEST_COMMAND}
