@@ -49,6 +49,7 @@
 #include "mpi_scene.hpp"
 #include "mpi_worker.hpp"
 #include "mpi_world.hpp"
+#include "out_of_memory.hpp"
 #include "progress_printer.hpp"
 #include "render_command.hpp"
 #include "render_variant.hpp"
@@ -77,8 +78,8 @@ hands out the tiles, prints the progress and writes the outputs (paths are rank 
     R"(Progress with an estimated time left goes to stderr while rendering, then one summary line
 naming the ranks and threads, and a line with each rank's idle time and the bytes sent.
 The image is rendered in passes (1 sample per pixel, 2, 4, ... then 32 more at a time): the
-first SIGINT, SIGTERM, SIGHUP or SIGUSR1 stops after the current pass and writes the image of
-the passes done, saying how many samples per pixel it holds; a second one exits at once (the
+first SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGALRM or SIGXCPU (a batch system's or a CPU-time
+limit's) stops after the current pass and writes the image of the passes done, saying how many samples per pixel it holds; a second one exits at once (the
 same signal again within a second is the same stop: timeout and other supervisors signal
 the process and then its process group).
 Open MPI's mpirun passes SIGUSR1 on to every rank as it is, but answers SIGINT and SIGTERM by
@@ -98,8 +99,9 @@ without), 128 + the signal's number when a signal stopped the render (138 for SI
     cli::kProgramSimds,
     cli::kVariantWavefrontLanes};
 
-// SIGUSR1 too: mpirun forwards it as it is, without killing the ranks a second later.
-constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1};
+// SIGUSR1 too: mpirun forwards it as it is, without killing the ranks a second later. SIGALRM
+// and SIGXCPU are what batch systems and a CPU-time limit send to say that time is up.
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGALRM, SIGXCPU};
 
 struct MpiOptions {
   bool scene_everywhere = false;
@@ -260,32 +262,35 @@ int render(const mpi::World& world, const cli::Options& options, const MpiOption
   const int threads = int(std::min<std::size_t>(std::size_t(settings.threads), grid.count));
 
   std::optional<cli::PassKeeper> keeper;
-  glint::PixelSums sums(settings.width, settings.height);
+  std::optional<glint::PixelSums> sums;
   std::optional<mpi::RankRenderer> renderer;
   const cli::ExecutionModel model = cli::execution_model(kProgram, options);
   const glint::Scene& scene = *loaded.scene;
-  if (int status = mpi::agree(world, mpi::attempt(kProgram, [&] {
-                                if (world.rank == 0) {
-                                  keeper.emplace(kProgram, options, settings, loaded.hash);
-                                  if (const glint::RenderStart start = keeper->start(); start.sums)
-                                    sums = *start.sums;
-                                }
-                                renderer.emplace(kProgram, [&](cli::TileQueue& queue) {
-                                  return cli::with_renderer<Variant>(
-                                      model, [&]<typename Renderer>() {
-                                        return Renderer::render_tiles(scene, settings, sums, queue);
-                                      });
-                                });
-                                if (std::optional<cli::Failure> failure = renderer->started())
-                                  throw glint::Error(failure->message);
-                              })))
+  if (int status =
+          mpi::agree(world, mpi::attempt(kProgram, [&] {
+                       cli::with_memory_for(
+                           [&] { return cli::image_memory(settings, options.resume.has_value()); },
+                           [&] { sums.emplace(settings.width, settings.height); });
+                       if (world.rank == 0) {
+                         keeper.emplace(kProgram, options, settings, loaded.hash);
+                         if (const glint::RenderStart start = keeper->start(); start.sums)
+                           *sums = *start.sums;
+                       }
+                       renderer.emplace(kProgram, [&](cli::TileQueue& queue) {
+                         return cli::with_renderer<Variant>(model, [&]<typename Renderer>() {
+                           return Renderer::render_tiles(scene, settings, *sums, queue);
+                         });
+                       });
+                       if (std::optional<cli::Failure> failure = renderer->started())
+                         throw glint::Error(failure->message);
+                     })))
     return status;
 
   if (world.rank != 0) {
-    mpi::serve(world, settings, *renderer, sums, threads);
+    mpi::serve(world, settings, *renderer, *sums, threads);
     return 0;
   }
-  return render_on_rank0(world, options, mpi_options, output, loaded, *keeper, sums, renderer,
+  return render_on_rank0(world, options, mpi_options, output, loaded, *keeper, *sums, renderer,
                          threads);
 }
 

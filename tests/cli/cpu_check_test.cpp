@@ -36,7 +36,7 @@ TEST_CASE("the CPU check is silent when nothing is missing", "[cpu_check]") {
 }
 
 TEST_CASE("the machine that built the tests has every instruction set they use", "[cpu_check]") {
-  glint::cli::InstructionSet sets[glint::cli::kMaxInstructionSets];
+  glint::cli::InstructionSet sets[glint::cli::kMaxInstructionSets] = {};
   const std::size_t count = glint::cli::instruction_sets_used(sets);
   for (std::size_t i = 0; i < count; ++i) {
     INFO(sets[i].name);

@@ -29,9 +29,9 @@ foreach(case page keys missing-image errors exr)
                    ${PROJECT_BINARY_DIR}/viewer-test/${case} ${PROJECT_SOURCE_DIR}
                    $<TARGET_FILE:glint-render-report> $<TARGET_FILE_DIR:glint-render>/glint-render-fast
                    $<TARGET_FILE:glint-compare> $<TARGET_FILE:glint-viewer-screenshot-check>)
-  # 77: Chromium is missing and cannot be installed (or, for `exr`, the build has no OpenEXR);
-  # ctest reports the test as skipped. One at a time: two installs at once would fight over
-  # apt's lock, and the loser would skip.
+  # 77: Chromium is missing (or, for `exr`, the build has no OpenEXR); ctest reports the test
+  # as skipped. One browser at a time: each takes a core and a few hundred MB, and two at once
+  # beside the rest of the suite could run past the timeout on a two-core machine.
   set_tests_properties("viewer: ${case}" PROPERTIES LABELS viewer SKIP_RETURN_CODE 77 TIMEOUT 120
                        RESOURCE_LOCK glint_browser)
 endforeach()
