@@ -181,8 +181,9 @@ TEST_CASE("LightBuffer: the cells of eight directions at once are cell_of's", "[
       ray.direction = -directions[base + std::size_t(lane)];  // cells() looks back along a ray
       batch.set(lane, ray);
     }
-    std::int32_t cells[kBatchWidth];
-    glint::store(cells, LightBuffer::cells(glint::simd::ray_lanes(batch)));
+    alignas(32) std::int32_t cells[kBatchWidth];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(cells),
+                       LightBuffer::cells(glint::avx2::ray_lanes(batch)));
     for (int lane = 0; lane < kBatchWidth; ++lane) {
       const Vec3& d = directions[base + std::size_t(lane)];
       INFO("direction (" << d.x << ", " << d.y << ", " << d.z << ")");
@@ -292,13 +293,12 @@ TEST_CASE("LightBuffer: blocks answers as the full scan for rays that end at the
         RayBatch batch;
         for (int lane = 0; lane < kBatchWidth; ++lane)
           batch.set(lane, ray);
-        const auto lanes = glint::simd::ray_lanes(batch);
-        const int cell = LightBuffer::cells(lanes)[0];
+        const glint::avx2::RayLanes lanes = glint::avx2::ray_lanes(batch);
+        const int cell = _mm256_extract_epi32(LightBuffer::cells(lanes), 0);
         const bool expected =
-            glint::simd::any_hit(ray, glint::hit_to_beat(ray, glint::SphereHit{}), set.columns());
+            glint::avx2::any_hit(ray, glint::hit_to_beat(ray, glint::SphereHit{}), set.columns());
         for (const LightBuffer& buffer : buffers) {
-          if (buffer.ends_here(lanes, glint::load<glint::Float<kBatchWidth>>(batch.t_max), 1u) == 0)
-            continue;
+          if (buffer.ends_here(lanes, _mm256_load_ps(batch.t_max), 1u) == 0) continue;
           ++taken;
           INFO("ray " << i << " origin (" << ray.origin.x << ", " << ray.origin.y << ", "
                       << ray.origin.z << ") to light (" << buffer.light().x << ", "
@@ -326,8 +326,7 @@ TEST_CASE("LightBuffer: ends_here takes the rays of PathContext::light_rays only
     RayBatch batch;
     for (int lane = 0; lane < kBatchWidth; ++lane)
       batch.set(lane, ray);
-    return buffer.ends_here(glint::simd::ray_lanes(batch),
-                            glint::load<glint::Float<kBatchWidth>>(batch.t_max), 0xFFu);
+    return buffer.ends_here(glint::avx2::ray_lanes(batch), _mm256_load_ps(batch.t_max), 0xFFu);
   };
   CHECK(taken(to_light) == 0xFFu);
   Ray behind = to_light;

@@ -27,9 +27,9 @@ struct Reference {
     for (const auto& s : spheres) {
       if (s.id == ray.origin_sphere) continue;
       const float r2 = s.radius * s.radius;
-      const glint::SphereQuadratic q =
-          glint::quadratic(glint::line_lane(ray.origin, ray.direction),
-                           glint::SphereLanes<float>{s.center.x, s.center.y, s.center.z, r2});
+      const glint::SphereQuadratic q = glint::quadratic(
+          glint::line_lane(ray.origin, ray.direction),
+          glint::BasicSphereLanes<glint::Lanes1>{s.center.x, s.center.y, s.center.z, r2});
       if (!(q.discriminant >= 0.0f)) continue;
       // An origin on this sphere too (a duplicate of the one the ray leaves): t = 0 heading in,
       // no hit heading out. The tolerance of sphere_kernel.hpp, c^2 < 8 tol^2 r^2 (|o|^2 + r^2),

@@ -191,59 +191,6 @@ TEST_CASE("wide: min, max, abs, copysign and select follow the scalar rules at e
   CHECK(!glint::all(one_nan == one_nan));
 }
 
-TEST_CASE(
-    "wide: fused products, unordered comparisons, signs and masks follow the scalar rules "
-    "at every width",
-    "[wide][unit]") {
-  // Width 1 against the standard library (std::fma rounds once) and the comparisons' negations,
-  // NaN and -0 included...
-  for (const auto& [a, b] : edge_pairs()) {
-    INFO("a = " << a << ", b = " << b);
-    CHECK(same_bits(glint::fmadd(a, b, 0.75f), std::fma(a, b, 0.75f)));
-    CHECK(same_bits(glint::fnmadd(a, b, 0.75f), std::fma(-a, b, 0.75f)));
-    CHECK(same_bits(glint::fmsub(a, b, 0.75f), std::fma(a, b, -0.75f)));
-    CHECK(glint::not_greater(a, b) == !(a > b));
-    CHECK(glint::not_less(a, b) == !(a < b));
-    CHECK(same_bits(glint::with_sign_of(std::fabs(a), b), std::copysign(std::fabs(a), b)));
-    CHECK(same_bits(glint::keep(a < b, b), a < b ? b : 0.0f));
-    CHECK(glint::and_not(a < b, a != a) == (a < b && !(a != a)));
-  }
-  // ...and every width against width 1, with a product that rounds differently fused (3 (1/3)
-  // - 1 is 0 unfused and 2^-25 fused).
-  Calls<2> calls = edge_pairs();
-  calls.push_back({3.0f, 1.0f / 3.0f});
-  check_same_bits_at_every_width(calls, [](auto a, auto b) {
-    using F = decltype(a);
-    const F one = glint::splat<F>(1.0f), zero = glint::splat<F>(0.0f);
-    return std::array{glint::fmadd(a, b, -one),
-                      glint::fnmadd(a, b, one),
-                      glint::fmsub(a, b, one),
-                      glint::select(glint::not_greater(a, b), one, zero),
-                      glint::select(glint::not_less(a, b), one, zero),
-                      glint::with_sign_of(glint::abs(a), b),
-                      glint::keep(a < b, b),
-                      glint::select(glint::and_not(a <= b, b != b), one, zero),
-                      glint::splat<F>(-0.0f)};
-  });
-  CHECK(glint::fmadd(3.0f, 1.0f / 3.0f, -1.0f) == 0x1p-25f);
-}
-
-TEST_CASE("wide: min_across_lanes gives the least lane in every lane", "[wide][unit]") {
-  glint::Pcg32 rng(5, 9);
-  for (int trial = 0; trial < 200; ++trial) {
-    glint::Float<8> v;
-    float least = kInf;
-    for (int lane = 0; lane < 8; ++lane) {
-      v[lane] = rng.next_float() * 100.0f - 50.0f;
-      if (trial % 3 == 0 && lane == trial % 8) v[lane] = -kInf;
-      least = std::min(least, v[lane]);
-    }
-    const glint::Float<8> folded = glint::min_across_lanes(v);
-    for (int lane = 0; lane < 8; ++lane)
-      CHECK(same_bits(folded[lane], least));
-  }
-}
-
 TEST_CASE("wide: the warps and the frame give the same bits at every width", "[wide][unit]") {
   Calls<3> calls;
   glint::Pcg32 rng(5, 6);

@@ -28,7 +28,7 @@ inline bool comes_before(const SphereHit& a, const SphereHit& b) {
 /// it admits no tie.
 inline SphereHit hit_to_beat(const Ray& ray, const SphereHit& hit) {
   if (hit.sphere != kNoSphere && hit.t < ray.t_max) return hit;
-  return {min(hit.t, ray.t_max), 0};
+  return {min_of(ray.t_max, hit.t), 0};
 }
 
 /// A structure of spheres queried by rays. Both queries skip the ray's origin sphere (the

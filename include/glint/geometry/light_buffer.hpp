@@ -28,7 +28,6 @@
 #include "glint/geometry/simd.hpp"
 #include "glint/geometry/sphere_kernel.hpp"
 #include "glint/instruction_set.hpp"
-#include "glint/math/wide.hpp"
 
 #ifdef GLINT_AVX2
 namespace glint::inline GLINT_ISA_NAMESPACE {
@@ -49,34 +48,36 @@ class LightBuffer {
   /// The cell of direction `w` (not zero): the face of its largest coordinate in magnitude
   /// (x, y, z: faces 0-1, 2-3, 4-5, the second for a negative one, the first on ties), and
   /// on it the square of the other two coordinates divided by that one. NaN goes to cell 0.
-  static int cell_of(const Vec3& w) { return cell_lanes(w.x, w.y, w.z); }
+  static int cell_of(const Vec3& w) { return cell_lanes<Lanes1>(w.x, w.y, w.z); }
 
-  /// cell_of for the direction (x, y, z) of each lane.
-  template <FloatType F>
-  static IntFor<F> cell_lanes(F x, F y, F z) {
-    using I = IntFor<F>;
-    using M = MaskFor<F>;
-    const F ax = abs(x), ay = abs(y), az = abs(z);
-    const M x_major = (ax >= ay) & (ax >= az);
-    const M y_major = and_not(ay >= az, x_major);
+  /// cell_of for the direction (x, y, z) of each lane, in registers of L (simd.hpp).
+  template <class L>
+  static typename L::I cell_lanes(typename L::F x, typename L::F y, typename L::F z) {
+    using F = typename L::F;
+    using I = typename L::I;
+    using M = typename L::M;
+    const F ax = L::abs(x), ay = L::abs(y), az = L::abs(z);
+    const M x_major = L::both(L::greater_equal(ax, ay), L::greater_equal(ax, az));
+    const M y_major = L::and_not(L::greater_equal(ay, az), x_major);
     // The major coordinate and the two after it, cyclically: (x; y, z), (y; z, x), (z; x, y).
-    const F major = select(x_major, x, select(y_major, y, z));
-    const F first = select(x_major, y, select(y_major, z, x));
-    const F second = select(x_major, z, select(y_major, x, y));
-    const F major_size = abs(major);
-    const I axis_face = select(x_major, splat<I>(0), select(y_major, splat<I>(2), splat<I>(4)));
-    const I face = axis_face + keep(major < splat<F>(0.0f), splat<I>(1));
-    const I u = square_index(first / major_size);
-    const I v = square_index(second / major_size);
-    const I edge = splat<I>(kCellsPerEdge);
-    return (face * edge + u) * edge + v;
+    const F major = L::select(x_major, x, L::select(y_major, y, z));
+    const F first = L::select(x_major, y, L::select(y_major, z, x));
+    const F second = L::select(x_major, z, L::select(y_major, x, y));
+    const F major_size = L::abs(major);
+    const I axis_face =
+        L::select(x_major, L::splat(0), L::select(y_major, L::splat(2), L::splat(4)));
+    const I face = L::add(axis_face, L::keep(L::less(major, L::zero()), L::splat(1)));
+    const I u = square_index<L>(L::div(first, major_size));
+    const I v = square_index<L>(L::div(second, major_size));
+    const I edge = L::splat(kCellsPerEdge);
+    return L::add(L::mul(L::add(L::mul(face, edge), u), edge), v);
   }
 
   LightBuffer() = default;
 
   /// The buffer of a light at `light` over `spheres` (at most kMaxSpheres; their columns are
   /// copied, grouped by direction from the light).
-  LightBuffer(const Vec3& light, const simd::SphereColumns& spheres) : light_(light) {
+  LightBuffer(const Vec3& light, const avx2::SphereColumns& spheres) : light_(light) {
     const std::size_t count = spheres.size;
     // Where the spheres reach from the light, which bounds the rays that the margins cover.
     double reach = 0.0;
@@ -148,32 +149,40 @@ class LightBuffer {
   /// t_max no more than the length the margins cover, and origin + t_max direction within the
   /// endpoint tolerance of the light (a shadow ray of PathContext::light_rays, to
   /// rounding). NaN in a lane fails every comparison, so that lane is not one of them.
-  unsigned ends_here(const SphereTestRays<Float<8>>& rays, Float<8> t_max, unsigned lanes) const {
-    using F = Float<8>;
-    const F ex = fmadd(t_max, rays.dx, rays.ox) - light_.x;
-    const F ey = fmadd(t_max, rays.dy, rays.oy) - light_.y;
-    const F ez = fmadd(t_max, rays.dz, rays.oz) - light_.z;
-    const F miss2 = fmadd(ex, ex, fmadd(ey, ey, ez * ez));
-    const F length2 = fmadd(rays.dx, rays.dx, fmadd(rays.dy, rays.dy, rays.dz * rays.dz));
-    const Mask<8> ends = ((miss2 <= endpoint_tolerance2_) & (t_max <= max_length_)) &
-                         ((length2 >= 0.81f) & (length2 <= 1.21f));
-    return bits_of_mask(ends & (rays.t_min >= 0.0f)) & lanes;
+  unsigned ends_here(const avx2::RayLanes& rays, __m256 t_max, unsigned lanes) const {
+    const __m256 ex =
+        _mm256_sub_ps(_mm256_fmadd_ps(t_max, rays.dx, rays.ox), _mm256_set1_ps(light_.x));
+    const __m256 ey =
+        _mm256_sub_ps(_mm256_fmadd_ps(t_max, rays.dy, rays.oy), _mm256_set1_ps(light_.y));
+    const __m256 ez =
+        _mm256_sub_ps(_mm256_fmadd_ps(t_max, rays.dz, rays.oz), _mm256_set1_ps(light_.z));
+    const __m256 miss2 = _mm256_fmadd_ps(ex, ex, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ez, ez)));
+    const __m256 length2 = _mm256_fmadd_ps(
+        rays.dx, rays.dx, _mm256_fmadd_ps(rays.dy, rays.dy, _mm256_mul_ps(rays.dz, rays.dz)));
+    const __m256 ends = _mm256_and_ps(
+        _mm256_and_ps(_mm256_cmp_ps(miss2, _mm256_set1_ps(endpoint_tolerance2_), _CMP_LE_OQ),
+                      _mm256_cmp_ps(t_max, _mm256_set1_ps(max_length_), _CMP_LE_OQ)),
+        _mm256_and_ps(_mm256_cmp_ps(length2, _mm256_set1_ps(0.81f), _CMP_GE_OQ),
+                      _mm256_cmp_ps(length2, _mm256_set1_ps(1.21f), _CMP_LE_OQ)));
+    const __m256 forward = _mm256_cmp_ps(rays.t_min, _mm256_setzero_ps(), _CMP_GE_OQ);
+    return unsigned(_mm256_movemask_ps(_mm256_and_ps(ends, forward))) & lanes;
   }
 
   /// cell_of(-direction) in each lane: the cell of the way back from the light to the origin.
-  static Int<8> cells(const SphereTestRays<Float<8>>& rays) {
-    return cell_lanes(-rays.dx, -rays.dy, -rays.dz);
+  static __m256i cells(const avx2::RayLanes& rays) {
+    using L = avx2::Lanes8;
+    return cell_lanes<L>(L::negate(rays.dx), L::negate(rays.dy), L::negate(rays.dz));
   }
 
   /// Whether a sphere of the buffer blocks `ray` (one that ends here, in cell `cell`): exactly
   /// the full scan's verdict on the buffer's spheres (see the margins).
   bool blocks(const Ray& ray, int cell) const {
-    const SphereTestRays<simd::GroupFloat> lanes(ray);
-    HitLanes<simd::GroupFloat> bound(hit_to_beat(ray, SphereHit{}));
-    const simd::SphereColumns spheres = columns();
+    const avx2::RayLanes lanes(ray);
+    avx2::HitLanes bound(hit_to_beat(ray, SphereHit{}));
+    const avx2::SphereColumns spheres = columns();
     for (unsigned groups = cell_groups_[std::size_t(cell)]; groups != 0; groups &= groups - 1) {
       const std::size_t base = std::size_t(std::countr_zero(groups)) * kGroupSize;
-      if (simd::test_group(lanes, spheres, base, bound)) return true;
+      if (avx2::test_8_spheres(lanes, spheres, base, bound)) return true;
     }
     return false;
   }
@@ -182,7 +191,7 @@ class LightBuffer {
   /// a cell.
   unsigned groups(int cell) const { return cell_groups_[std::size_t(cell)]; }
 
-  simd::SphereColumns columns() const {
+  avx2::SphereColumns columns() const {
     return {cx_.data(), cy_.data(), cz_.data(), r2_.data(), ids_.data(), count_};
   }
   float max_length() const { return max_length_; }
@@ -263,11 +272,12 @@ class LightBuffer {
   }
 
   /// The row or column of a face's cells at a coordinate in [-1, 1] of it, in each lane; NaN
-  /// goes to 0 (the maximum is taken first, and gives its first operand, 0, for NaN).
-  template <FloatType F>
-  static IntFor<F> square_index(F coordinate) {
-    const F scaled = (coordinate + 1.0f) * (0.5f * kCellsPerEdge);
-    return truncate_to_int(min(splat<F>(float(kCellsPerEdge - 1)), max(splat<F>(0.0f), scaled)));
+  /// goes to 0 (the maximum is taken first, and gives its second operand for NaN).
+  template <class L>
+  static typename L::I square_index(typename L::F coordinate) {
+    const typename L::F scaled =
+        L::mul(L::add(coordinate, L::splat(1.0f)), L::splat(0.5f * kCellsPerEdge));
+    return L::truncate(L::min(L::max(scaled, L::zero()), L::splat(float(kCellsPerEdge - 1))));
   }
 
   /// Orders spheres by face, then along a Z-order curve of the face's cells.
@@ -281,7 +291,7 @@ class LightBuffer {
     return face * kCellsPerEdge * kCellsPerEdge + morton;
   }
 
-  double distance_to(const simd::SphereColumns& spheres, std::size_t i) const {
+  double distance_to(const avx2::SphereColumns& spheres, std::size_t i) const {
     return glm::length(glm::dvec3(double(spheres.cx[i]) - double(light_.x),
                                   double(spheres.cy[i]) - double(light_.y),
                                   double(spheres.cz[i]) - double(light_.z)));

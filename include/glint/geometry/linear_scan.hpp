@@ -38,26 +38,26 @@ class LinearScan {
   /// The queries with the scalar kernel, the reference for the SIMD one.
   bool closest_hit_scalar(const Ray& ray, SphereHit& hit) const {
     SphereHit best = hit_to_beat(ray, hit);
-    if (!test_spheres(SphereTestRay(ray), set(), 0, set().size(), best, /*stop_at_first=*/false))
+    if (!test_spheres(RayLane(ray), set(), 0, set().size(), best, /*stop_at_first=*/false))
       return false;
     hit = best;
     return true;
   }
   bool any_hit_scalar(const Ray& ray) const {
     SphereHit best = hit_to_beat(ray, SphereHit{});
-    return test_spheres(SphereTestRay(ray), set(), 0, set().size(), best, /*stop_at_first=*/true);
+    return test_spheres(RayLane(ray), set(), 0, set().size(), best, /*stop_at_first=*/true);
   }
 
 #ifdef GLINT_AVX2
   /// The queries with the 8-wide kernel.
   bool closest_hit_avx2(const Ray& ray, SphereHit& hit) const {
     SphereHit best = hit_to_beat(ray, hit);
-    if (!simd::closest_hit(ray, best, set().columns())) return false;
+    if (!avx2::closest_hit(ray, best, set().columns())) return false;
     hit = best;
     return true;
   }
   bool any_hit_avx2(const Ray& ray) const {
-    return simd::any_hit(ray, hit_to_beat(ray, SphereHit{}), set().columns());
+    return avx2::any_hit(ray, hit_to_beat(ray, SphereHit{}), set().columns());
   }
 #endif
 

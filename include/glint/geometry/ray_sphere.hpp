@@ -16,26 +16,26 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "glint/geometry/simd.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
-#include "glint/math/wide.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
-// The formulas are written once over a Float type F (math/wide.hpp): for one ray and one
-// sphere at width 1 (float), and lane by lane in the SIMD kernels (sphere_kernel.hpp), which so
-// give each ray the bits that the scalar form gives it.
+// The formulas are written once over a register type L (simd.hpp): for one ray and one sphere
+// at Lanes1, and lane by lane in the SIMD kernels (sphere_kernel.hpp), which so give each ray
+// the bits that the scalar form gives it.
 
-/// A ray's origin and unit direction in each lane.
-template <FloatType F>
+/// A ray's origin and unit direction in each lane of L's registers.
+template <class L>
 struct LineLanes {
-  F ox, oy, oz, dx, dy, dz;
+  typename L::F ox, oy, oz, dx, dy, dz;
 };
 
 /// A sphere given by its centre and squared radius in each lane.
-template <FloatType F>
-struct SphereLanes {
-  F cx, cy, cz, r2;
+template <class L>
+struct BasicSphereLanes {
+  typename L::F cx, cy, cz, r2;
 };
 
 /// The quadratic in t of a ray (unit direction) and a sphere, t^2 + 2 b t + c = 0: b = f.d and
@@ -43,53 +43,54 @@ struct SphereLanes {
 /// b^2 - c in the form accurate for the kind of sphere. c is the origin's signed distance from
 /// the surface times |f| + r, and b the cosine of the direction with the outward normal there
 /// times |f|: what decides a root at the origin itself (see sphere_kernel.hpp).
-template <FloatType F>
+template <class L>
 struct QuadraticLanes {
-  F b, c, discriminant;
+  typename L::F b, c, discriminant;
 };
 
 /// The quadratic of a sphere given by its centre, with Haines's discriminant
 /// r^2 - |f - (f.d)d|^2, lane by lane.
-template <FloatType F>
-inline QuadraticLanes<F> quadratic(const LineLanes<F>& ray, const SphereLanes<F>& sphere) {
-  const F fx = ray.ox - sphere.cx;
-  const F fy = ray.oy - sphere.cy;
-  const F fz = ray.oz - sphere.cz;
-  const F b = fmadd(fx, ray.dx, fmadd(fy, ray.dy, fz * ray.dz));
-  const F px = fnmadd(b, ray.dx, fx);
-  const F py = fnmadd(b, ray.dy, fy);
-  const F pz = fnmadd(b, ray.dz, fz);
-  const F perp2 = fmadd(px, px, fmadd(py, py, pz * pz));
-  const F c = fmadd(fx, fx, fmadd(fy, fy, fz * fz)) - sphere.r2;
-  return {b, c, sphere.r2 - perp2};
+template <class L>
+inline QuadraticLanes<L> quadratic(const LineLanes<L>& ray, const BasicSphereLanes<L>& sphere) {
+  using F = typename L::F;
+  const F fx = L::sub(ray.ox, sphere.cx);
+  const F fy = L::sub(ray.oy, sphere.cy);
+  const F fz = L::sub(ray.oz, sphere.cz);
+  const F b = L::fmadd(fx, ray.dx, L::fmadd(fy, ray.dy, L::mul(fz, ray.dz)));
+  const F px = L::fnmadd(b, ray.dx, fx);
+  const F py = L::fnmadd(b, ray.dy, fy);
+  const F pz = L::fnmadd(b, ray.dz, fz);
+  const F perp2 = L::fmadd(px, px, L::fmadd(py, py, L::mul(pz, pz)));
+  const F c = L::sub(L::fmadd(fx, fx, L::fmadd(fy, fy, L::mul(fz, fz))), sphere.r2);
+  return {b, c, L::sub(sphere.r2, perp2)};
 }
 
 /// Both roots of each lane's quadratic, near <= far.
-template <FloatType F>
+template <class L>
 struct RootLanes {
-  F near, far;
+  typename L::F near, far;
 };
 
 /// The roots of each lane's quadratic from a discriminant >= 0 however it was computed:
 /// q = -(b + sign(b) sqrt(discriminant)) and c / q, the stable pair. (A negative discriminant
 /// counts as 0.)
-template <FloatType F>
-inline RootLanes<F> roots_of(const QuadraticLanes<F>& quadratic) {
-  // (A NaN discriminant counts as 0 too: max gives its first operand.)
-  const F root = sqrt(max(splat<F>(0.0f), quadratic.discriminant));
-  const F q = -(quadratic.b + with_sign_of(root, quadratic.b));
-  const F t0 = quadratic.c / q;
-  return {min(q, t0), max(q, t0)};
+template <class L>
+inline RootLanes<L> roots_of(const QuadraticLanes<L>& quadratic) {
+  using F = typename L::F;
+  const F root = L::sqrt(L::max(quadratic.discriminant, L::zero()));
+  const F q = L::negate(L::add(quadratic.b, L::with_sign_of(root, quadratic.b)));
+  const F t0 = L::div(quadratic.c, q);
+  return {L::min(t0, q), L::max(t0, q)};
 }
 
 /// Where a ray meets a sphere, near <= far.
-using SphereRoots = RootLanes<float>;
+using SphereRoots = RootLanes<Lanes1>;
 
 /// The quadratic of one ray and one sphere.
-using SphereQuadratic = QuadraticLanes<float>;
+using SphereQuadratic = QuadraticLanes<Lanes1>;
 
 /// A ray's line as the formulas read it at width 1.
-inline LineLanes<float> line_lane(const Vec3& origin, const Vec3& direction) {
+inline LineLanes<Lanes1> line_lane(const Vec3& origin, const Vec3& direction) {
   return {origin.x, origin.y, origin.z, direction.x, direction.y, direction.z};
 }
 
@@ -100,7 +101,7 @@ inline bool intersect_sphere_squared_radius(const Vec3& origin, const Vec3& dire
                                             SphereRoots& roots) {
   const SphereQuadratic q =
       quadratic(line_lane(origin, direction),
-                SphereLanes<float>{center.x, center.y, center.z, radius_squared});
+                BasicSphereLanes<Lanes1>{center.x, center.y, center.z, radius_squared});
   if (!(q.discriminant >= 0.0f)) return false;
   roots = roots_of(q);
   return true;
@@ -145,12 +146,12 @@ inline AnchoredSphere anchor_sphere(const Vec3& center, float radius, const Vec3
 }
 
 /// An anchored sphere in each lane.
-template <FloatType F>
-struct AnchoredLanes {
-  F ax, ay, az, mx, my, mz, r2;
+template <class L>
+struct BasicAnchoredLanes {
+  typename L::F ax, ay, az, mx, my, mz, r2;
 };
 
-inline AnchoredLanes<float> anchored_lane(const AnchoredSphere& sphere) {
+inline BasicAnchoredLanes<Lanes1> anchored_lane(const AnchoredSphere& sphere) {
   return {sphere.anchor.x, sphere.anchor.y, sphere.anchor.z,      sphere.offset.x,
           sphere.offset.y, sphere.offset.z, sphere.radius_squared};
 }
@@ -164,34 +165,39 @@ inline AnchoredLanes<float> anchored_lane(const AnchoredSphere& sphere) {
 /// sphere small next to its distance). Rays from inside a room are near all of its walls: when
 /// every lane is near, Haines's form is not computed. NaN anchors (padding lanes) count as near
 /// (an unordered comparison) and give a NaN discriminant.
-template <FloatType F>
-struct AnchoredQuadraticLanes : QuadraticLanes<F> {
-  F gx, gy, gz;  ///< g, the offset of the origin from the anchor
+template <class L>
+struct AnchoredQuadraticLanes : QuadraticLanes<L> {
+  typename L::F gx, gy, gz;  ///< g, the offset of the origin from the anchor
 
   /// |g|^2, the squared distance of the origin from the anchor.
-  F from_anchor_squared() const { return fmadd(gx, gx, fmadd(gy, gy, gz * gz)); }
+  typename L::F from_anchor_squared() const {
+    return L::fmadd(gx, gx, L::fmadd(gy, gy, L::mul(gz, gz)));
+  }
 };
 
-template <FloatType F>
-inline AnchoredQuadraticLanes<F> quadratic(const LineLanes<F>& ray,
-                                           const AnchoredLanes<F>& sphere) {
-  const F gx = ray.ox - sphere.ax;
-  const F gy = ray.oy - sphere.ay;
-  const F gz = ray.oz - sphere.az;
-  const F fx = gx + sphere.mx;
-  const F fy = gy + sphere.my;
-  const F fz = gz + sphere.mz;
-  const F c = fmadd(gx, fx + sphere.mx, fmadd(gy, fy + sphere.my, gz * (fz + sphere.mz)));
-  const F b = fmadd(fx, ray.dx, fmadd(fy, ray.dy, fz * ray.dz));
-  const F near_form = fmsub(b, b, c);
-  const MaskFor<F> near = not_greater(abs(c), sphere.r2);
+template <class L>
+inline AnchoredQuadraticLanes<L> quadratic(const LineLanes<L>& ray,
+                                           const BasicAnchoredLanes<L>& sphere) {
+  using F = typename L::F;
+  using M = typename L::M;
+  const F gx = L::sub(ray.ox, sphere.ax);
+  const F gy = L::sub(ray.oy, sphere.ay);
+  const F gz = L::sub(ray.oz, sphere.az);
+  const F fx = L::add(gx, sphere.mx);
+  const F fy = L::add(gy, sphere.my);
+  const F fz = L::add(gz, sphere.mz);
+  const F c = L::fmadd(gx, L::add(fx, sphere.mx),
+                       L::fmadd(gy, L::add(fy, sphere.my), L::mul(gz, L::add(fz, sphere.mz))));
+  const F b = L::fmadd(fx, ray.dx, L::fmadd(fy, ray.dy, L::mul(fz, ray.dz)));
+  const F near_form = L::fmsub(b, b, c);
+  const M near = L::not_greater(L::abs(c), sphere.r2);
   F discriminant = near_form;
-  if (!all(near)) {
-    const F px = fnmadd(b, ray.dx, fx);
-    const F py = fnmadd(b, ray.dy, fy);
-    const F pz = fnmadd(b, ray.dz, fz);
-    const F perp2 = fmadd(px, px, fmadd(py, py, pz * pz));
-    discriminant = select(near, near_form, sphere.r2 - perp2);
+  if (L::bits(near) != L::kAllLanes) {
+    const F px = L::fnmadd(b, ray.dx, fx);
+    const F py = L::fnmadd(b, ray.dy, fy);
+    const F pz = L::fnmadd(b, ray.dz, fz);
+    const F perp2 = L::fmadd(px, px, L::fmadd(py, py, L::mul(pz, pz)));
+    discriminant = L::select(near, near_form, L::sub(sphere.r2, perp2));
   }
   return {{b, c, discriminant}, gx, gy, gz};
 }

@@ -241,7 +241,7 @@ class SphereBvh {
                            const Ray (&lane_rays)[RayBatch::kWidth],
                            SphereHit (&best)[RayBatch::kWidth]) const {
     const GroupedSpheres leaves{leaves_.data()};
-    const auto lane_kernel_rays = per_lane<SphereTestRay>(lane_rays);
+    const auto lane_kernel_rays = per_lane<RayLane>(lane_rays);
     return bvh::traverse_packet<kAnyHit>(
         wide_, rays, active, best,
         [&](int lane, std::uint32_t first, std::uint32_t count, SphereHit& leaf_best) {
@@ -251,7 +251,7 @@ class SphereBvh {
   }
 #endif
 
-  /// What the leaf kernel reads of each lane's ray (a SphereTestRay or a GroupRay), made once per
+  /// What the leaf kernel reads of each lane's ray (a RayLane or a GroupRay), made once per
   /// traversal rather than at every leaf the lane enters.
   template <class KernelRay>
   static std::array<KernelRay, RayBatch::kWidth> per_lane(

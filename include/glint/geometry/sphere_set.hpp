@@ -40,7 +40,7 @@ class SphereSet : public LinearScan<SphereSet> {
 
 #ifdef GLINT_AVX2
   /// The storage as the 8-wide kernel reads it.
-  simd::SphereColumns columns() const {
+  avx2::SphereColumns columns() const {
     return {cx_.data(), cy_.data(), cz_.data(), r2_.data(), ids_.data(), count_};
   }
 #endif

@@ -55,7 +55,7 @@ class WallSet : public LinearScan<WallSet> {
 
 #ifdef GLINT_AVX2
   /// The storage as the 8-wide kernel reads it.
-  simd::AnchoredColumns columns() const {
+  avx2::AnchoredColumns columns() const {
     return {ax_.data(), ay_.data(), az_.data(),  mx_.data(), my_.data(),
             mz_.data(), r2_.data(), ids_.data(), count_};
   }

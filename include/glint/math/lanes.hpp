@@ -2,7 +2,7 @@
 // The eight-lane width of math/wide.hpp as the wavefront renderer's stages use it, lane i being
 // path i of a block, with what AVX2 adds to the width-generic operations: transposes,
 // permutations and the packing of lanes into queues. Defined only with GLINT_AVX2
-// (glint/instruction_set.hpp).
+// (geometry/simd.hpp).
 
 #include <bit>
 #include <cmath>

@@ -3,7 +3,6 @@
 // traffic and doubles SIMD width; the ray/sphere test is written to stay accurate in float
 // even for the 1e5-radius wall spheres (see geometry/ray_sphere.hpp).
 
-#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -22,10 +21,18 @@ using Color = glm::vec3;
 inline constexpr float kPi = 3.14159265358979323846f;
 inline constexpr float kInvPi = 0.31830988618379067154f;
 
-/// The largest component; where one is NaN, as math/wide.hpp's max decides (std::max's rule,
-/// one instruction, where std::fmax would be a library call).
+/// Minimum and maximum that compile to single instructions (std::fmin/fmax must handle NaN
+/// specially and end up as library calls in hot loops). If either argument is NaN the
+/// result is the second argument.
+inline float min_of(float a, float b) {
+  return a < b ? a : b;
+}
+inline float max_of(float a, float b) {
+  return a > b ? a : b;
+}
+
 inline float max_component(const Vec3& v) {
-  return std::max(std::max(v.z, v.y), v.x);
+  return max_of(v.x, max_of(v.y, v.z));
 }
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -1,24 +1,13 @@
 #pragma once
-// The numbers glint is written in, at any width: Float<W>, Int<W>, UInt<W> and Mask<W> hold W
-// lanes, one path (or one ray, or one sphere) per lane. At width 1 they are plain float,
-// int32_t, uint32_t and bool, so a formula instantiated at width 1 is ordinary scalar code; at
-// widths 8 (one AVX2 register) and 16 (one AVX-512 register) they are GCC/Clang vector types,
-// whose operators act lane by lane and whose comparisons give masks of -1 (true) or 0 per lane.
-// Both the shading and the geometry's kernels (geometry/ray_sphere.hpp, sphere_kernel.hpp,
-// ray_batch_kernel.hpp, bvh/traverse.hpp) are written once, as templates over their Float type,
-// with the operators and the functions below: the same IEEE operations in the same order in
-// every lane, so that with -ffp-contract=off (glint's CMake target sets it) every width gives
-// the same bits. Products are fused only where a function says so (fmadd, fnmadd, fmsub), and
-// then at every width.
-//
-// One mask type per width: Mask<1> is bool, Mask<8> and Mask<16> are Int<8> and Int<16> with
-// -1 or 0 per lane (what the vector types' comparisons give). Masks combine with &, | and
-// and_not ("this but not that"; ~ negates no bool), or &&, || and !, which give the same lanes
-// but may cost a comparison with 0 per operand on vector masks; they choose with select and
-// keep, and turn into bits (bit i: lane i, bits_of_mask) and back (mask_of_bits) where code
-// counts or iterates over lanes.
-// Where an instruction set does better than the compiler's own code for an operation (AVX's
-// blend, AVX-512's mask moves), the function uses it inside; the results are the same.
+// The numbers glint's physics is written in, at any width: Float<W>, Int<W>, UInt<W> and
+// Mask<W> hold W lanes, one path per lane. At width 1 they are plain float, int32_t, uint32_t
+// and bool, so a formula instantiated at width 1 is ordinary scalar code; at widths 8 (one AVX2
+// register) and 16 (one AVX-512 register) they are GCC/Clang vector types, whose operators act
+// lane by lane and whose comparisons give masks of -1 (true) or 0 per lane. A formula is
+// written once, as a template over its Float type, with the operators and the functions below
+// (select, min, max, abs, sqrt, copysign, conversions): the same IEEE operations in the same
+// order in every lane, so that with -ffp-contract=off (glint's CMake target sets it) every
+// width gives the same bits.
 //
 // Vec2For<F> and Vec3For<F> are the 2- and 3-vectors over F: glm's vec2 and vec3 at width 1,
 // Vector2<F> and Vector3<F> (structures of arrays) wider. Templates take vectors as their own
@@ -103,18 +92,13 @@ concept WideNumber =
 
 // ---- lanes: broadcast, access, loads and stores ------------------------------------------
 
-/// `value` in every lane (-0 stays -0).
+/// `value` in every lane.
 template <typename T, typename S>
 inline T splat(S value) {
-  if constexpr (kLanesOf<T> == 1) {
+  if constexpr (kLanesOf<T> == 1)
     return T(value);
-  } else {
-    using Lane = std::remove_cvref_t<decltype(std::declval<T>()[0])>;
-    return [&]<int... I>(std::integer_sequence<int, I...>) {
-      return T{((void)I, Lane(value))...};
-    }
-    (std::make_integer_sequence<int, kLanesOf<T>>{});
-  }
+  else
+    return T{} + value;
 }
 
 /// Lane i of a value (width 1: the value).
@@ -197,10 +181,9 @@ inline T select(bool mask, T if_true, T if_false) {
 }
 template <WideNumber M, WideNumber T>
 requires(kLanesOf<M> == kLanesOf<T>) inline T select(M mask, T if_true, T if_false) {
-#if defined(__AVX__)
-  // One blend by the masks' sign bits (all ones or all zeros). (At sixteen lanes AVX-512 makes
-  // the three-operation form below one instruction, vpternlogd; at eight GCC would make it two,
-  // by a mask register.)
+#if defined(__AVX__) && !defined(__AVX512VL__)
+  // One blend by the masks' sign bits (all ones or all zeros), where AVX-512 does not make the
+  // three-operation form one instruction (vpternlogd).
   if constexpr (kLanesOf<T> == 8) {
     return std::bit_cast<T>(_mm256_blendv_ps(std::bit_cast<__m256>(if_false),
                                              std::bit_cast<__m256>(if_true),
@@ -216,101 +199,16 @@ requires(kLanesOf<M> == kLanesOf<T>) inline T select(M mask, T if_true, T if_fal
   }
 }
 
-/// `value` in the lanes where `mask` is true, all bits 0 (+0 for a Float) in the others.
-template <typename T>
-inline T keep(bool mask, T value) {
-  return mask ? value : T(0);
-}
-template <WideNumber M, WideNumber T>
-requires(kLanesOf<M> == kLanesOf<T>) inline T keep(M mask, T value) {
-  return std::bit_cast<T>(std::bit_cast<M>(value) & mask);
-}
-
-/// The lanes true in `mask` and false in `except`.
-inline bool and_not(bool mask, bool except) {
-  return mask && !except;
-}
-template <WideNumber M>
-inline M and_not(M mask, M except) {
-  return mask & ~except;
-}
-
-// ---- comparisons -----------------------------------------------------------------------------
-// The operators compare lane by lane: <, <=, >, >= and == are false where either operand is
-// NaN. These two are their negations, true there.
-
-/// !(a > b) and !(a < b) lane by lane.
-template <FloatType F>
-inline MaskFor<F> not_greater(F a, F b) {
-  if constexpr (kLanesOf<F> == 1) {
-    return !(a > b);
-#if defined(__AVX__)
-  } else if constexpr (kLanesOf<F> == 8) {
-    return std::bit_cast<MaskFor<F>>(
-        _mm256_cmp_ps(std::bit_cast<__m256>(a), std::bit_cast<__m256>(b), _CMP_NGT_UQ));
-#endif
-  } else {
-    return !(a > b);
-  }
-}
-template <FloatType F>
-inline MaskFor<F> not_less(F a, F b) {
-  if constexpr (kLanesOf<F> == 1) {
-    return !(a < b);
-#if defined(__AVX__)
-  } else if constexpr (kLanesOf<F> == 8) {
-    return std::bit_cast<MaskFor<F>>(
-        _mm256_cmp_ps(std::bit_cast<__m256>(a), std::bit_cast<__m256>(b), _CMP_NLT_UQ));
-#endif
-  } else {
-    return !(a < b);
-  }
-}
-
 // ---- arithmetic ------------------------------------------------------------------------------
 
-/// std::min and std::max lane by lane, with their rule for NaN, glint's one rule: min(a, b) is
-/// b where b < a and a elsewhere, max(a, b) b where a < b and a elsewhere, so where either is
-/// NaN the first argument (and of +0 and -0 the first too). At every width this is one
-/// instruction, minps and maxps with the operands swapped (those give their second operand
-/// unless the comparison holds); code that wants NaN to give way to a bound passes the bound
-/// first.
-#if defined(__AVX512F__)
-namespace detail {
-// minps and maxps at sixteen lanes. (The masked forms with every lane set are the plain
-// instructions; GCC 12's plain intrinsics start from an undefined register, which
-// -Wmaybe-uninitialized reports.)
-inline __m512 min16(__m512 a, __m512 b) {
-  return _mm512_mask_min_ps(a, __mmask16(0xffff), a, b);
-}
-inline __m512 max16(__m512 a, __m512 b) {
-  return _mm512_mask_max_ps(a, __mmask16(0xffff), a, b);
-}
-}  // namespace detail
-#endif
-
+/// std::min and std::max lane by lane, with their rule for NaN: the first argument unless the
+/// comparison holds.
 template <FloatType F>
 inline F min(F a, F b) {
-#if defined(__AVX512F__)
-  if constexpr (kLanesOf<F> == 16)
-    return std::bit_cast<F>(detail::min16(std::bit_cast<__m512>(b), std::bit_cast<__m512>(a)));
-#endif
-#if defined(__AVX__)
-  if constexpr (kLanesOf<F> == 8)
-    return std::bit_cast<F>(_mm256_min_ps(std::bit_cast<__m256>(b), std::bit_cast<__m256>(a)));
-#endif
   return select(b < a, b, a);
 }
 template <FloatType F>
 inline F max(F a, F b) {
-#if defined(__AVX512F__)
-  if constexpr (kLanesOf<F> == 16)
-    return std::bit_cast<F>(detail::max16(std::bit_cast<__m512>(b), std::bit_cast<__m512>(a)));
-#endif
-#if defined(__AVX__)
-  if constexpr (kLanesOf<F> == 8)
-    return std::bit_cast<F>(_mm256_max_ps(std::bit_cast<__m256>(b), std::bit_cast<__m256>(a)));
-#endif
   return select(a < b, b, a);
 }
 
@@ -332,73 +230,6 @@ inline F copysign(F magnitude, F sign) {
     return std::bit_cast<F>((std::bit_cast<I>(magnitude) & 0x7fffffff) |
                             (std::bit_cast<I>(sign) & std::int32_t(0x80000000u)));
   }
-}
-
-/// copysign for a magnitude whose sign bit is clear (+0 or more, or a positive NaN): one
-/// operation fewer.
-template <FloatType F>
-inline F with_sign_of(F magnitude, F sign) {
-  if constexpr (kLanesOf<F> == 1) {
-    return std::copysign(magnitude, sign);
-  } else {
-    using I = IntFor<F>;
-    return std::bit_cast<F>(std::bit_cast<I>(magnitude) |
-                            (std::bit_cast<I>(sign) & std::int32_t(0x80000000u)));
-  }
-}
-
-/// a b + c, a b rounded once with c (IEEE's fusedMultiplyAdd): the FMA instruction where the
-/// target has it, else std::fma, which rounds alike.
-template <FloatType F>
-inline F fmadd(F a, F b, F c) {
-  if constexpr (kLanesOf<F> == 1) {
-    return std::fma(a, b, c);
-#if defined(__AVX512F__)
-  } else if constexpr (kLanesOf<F> == 16) {
-    return std::bit_cast<F>(_mm512_fmadd_ps(std::bit_cast<__m512>(a), std::bit_cast<__m512>(b),
-                                            std::bit_cast<__m512>(c)));
-#endif
-#if defined(__FMA__)
-  } else if constexpr (kLanesOf<F> == 8) {
-    return std::bit_cast<F>(_mm256_fmadd_ps(std::bit_cast<__m256>(a), std::bit_cast<__m256>(b),
-                                            std::bit_cast<__m256>(c)));
-#endif
-  } else {
-    F result;
-    for (int i = 0; i < kLanesOf<F>; ++i)
-      result[i] = std::fma(a[i], b[i], c[i]);
-    return result;
-  }
-}
-/// c - a b, rounded once.
-template <FloatType F>
-inline F fnmadd(F a, F b, F c) {
-#if defined(__AVX512F__)
-  if constexpr (kLanesOf<F> == 16)
-    return std::bit_cast<F>(_mm512_fnmadd_ps(std::bit_cast<__m512>(a), std::bit_cast<__m512>(b),
-                                             std::bit_cast<__m512>(c)));
-#endif
-#if defined(__FMA__)
-  if constexpr (kLanesOf<F> == 8)
-    return std::bit_cast<F>(_mm256_fnmadd_ps(std::bit_cast<__m256>(a), std::bit_cast<__m256>(b),
-                                             std::bit_cast<__m256>(c)));
-#endif
-  return fmadd(-a, b, c);
-}
-/// a b - c, rounded once.
-template <FloatType F>
-inline F fmsub(F a, F b, F c) {
-#if defined(__AVX512F__)
-  if constexpr (kLanesOf<F> == 16)
-    return std::bit_cast<F>(_mm512_fmsub_ps(std::bit_cast<__m512>(a), std::bit_cast<__m512>(b),
-                                            std::bit_cast<__m512>(c)));
-#endif
-#if defined(__FMA__)
-  if constexpr (kLanesOf<F> == 8)
-    return std::bit_cast<F>(_mm256_fmsub_ps(std::bit_cast<__m256>(a), std::bit_cast<__m256>(b),
-                                            std::bit_cast<__m256>(c)));
-#endif
-  return fmadd(a, b, -c);
 }
 
 /// The correctly rounded square root (IEEE), so the same in every lane and at every width.
@@ -506,10 +337,12 @@ inline void set_lane(Vector3<F>& v, int i, const Vec3& to) {
   v.set_lane(i, to);
 }
 
-/// glint::max_component lane by lane.
+/// glint::max_component lane by lane (max_of's rule for NaN: the second unless the first is
+/// greater).
 template <typename F>
 inline F max_component(const Vector3<F>& v) {
-  return max(max(v.z, v.y), v.x);
+  const auto max_of = [](F a, F b) { return select(a > b, a, b); };
+  return max_of(v.x, max_of(v.y, v.z));
 }
 
 /// `v` in every lane of a Vec3 or Vector3 type V.
@@ -572,10 +405,6 @@ inline std::uint32_t bits_of_mask(bool mask) {
 }
 template <WideNumber M>
 inline std::uint32_t bits_of_mask(M mask) {
-#if defined(__AVX512DQ__)
-  if constexpr (kLanesOf<M> == 16)
-    return std::uint32_t(_mm512_movepi32_mask(std::bit_cast<__m512i>(mask)));
-#endif
 #if defined(__AVX__)
   if constexpr (kLanesOf<M> == 8)
     return std::uint32_t(_mm256_movemask_ps(std::bit_cast<__m256>(mask)));
@@ -591,33 +420,12 @@ template <typename M>
 inline M mask_of_bits(std::uint32_t bits) {
   if constexpr (kLanesOf<M> == 1) {
     return (bits & 1u) != 0;
-#if defined(__AVX512DQ__)
-  } else if constexpr (kLanesOf<M> == 16) {
-    return std::bit_cast<M>(_mm512_movm_epi32(__mmask16(bits)));
-#endif
   } else {
     M lane_bit{};
     for (int i = 0; i < kLanesOf<M>; ++i)
       lane_bit[i] = std::int32_t(1u << i);
-    return (splat<M>(std::int32_t(bits)) & lane_bit) == lane_bit;
+    return (splat<M>(std::int32_t(bits)) & lane_bit) != 0;
   }
-}
-
-/// The least of the lanes of `value`, in every lane: min(lane i ^ 1, lane i), then the same
-/// over i ^ 2 and i ^ 4. (Between +0 and -0, or with NaN, lanes may differ, each as min's rule
-/// decides at its own steps.)
-template <FloatType F>
-requires(kLanesOf<F> == 8) inline F min_across_lanes(F value) {
-#if defined(__AVX__)
-  const __m256 v = std::bit_cast<__m256>(value);
-  __m256 least = _mm256_min_ps(v, _mm256_permute_ps(v, 0b10110001));
-  least = _mm256_min_ps(least, _mm256_permute_ps(least, 0b01001110));
-  return std::bit_cast<F>(_mm256_min_ps(least, _mm256_permute2f128_ps(least, least, 1)));
-#else
-  F least = min(__builtin_shufflevector(value, value, 1, 0, 3, 2, 5, 4, 7, 6), value);
-  least = min(__builtin_shufflevector(least, least, 2, 3, 0, 1, 6, 7, 4, 5), least);
-  return min(__builtin_shufflevector(least, least, 4, 5, 6, 7, 0, 1, 2, 3), least);
-#endif
 }
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -161,7 +161,7 @@ class Scene {
   LaneMask closest_hits(const RayBatch& rays, LaneMask active, HitBatch& hits,
                         RayCoherence coherence = RayCoherence::unknown) const {
 #ifdef GLINT_AVX2
-    return closest_hits_simd<Float<8>>(&rays, active, &hits, coherence);
+    return closest_hits_simd<avx2::Lanes8>(&rays, active, &hits, coherence);
 #else
     (void)coherence;
     return closest_hits_per_lane(rays, active, hits);
@@ -175,7 +175,7 @@ class Scene {
                         std::span<HitBatch, 2> hits,
                         RayCoherence coherence = RayCoherence::unknown) const {
 #ifdef GLINT_AVX512
-    return closest_hits_simd<Float<16>>(rays.data(), active, hits.data(), coherence);
+    return closest_hits_simd<avx2::Lanes16>(rays.data(), active, hits.data(), coherence);
 #else
     return closest_hits(rays[0], batch_lanes(active, 0), hits[0], coherence) |
            closest_hits(rays[1], batch_lanes(active, 1), hits[1], coherence) << RayBatch::kWidth;
@@ -187,7 +187,7 @@ class Scene {
   LaneMask occluded(const RayBatch& rays, LaneMask active,
                     RayCoherence coherence = RayCoherence::unknown) const {
 #ifdef GLINT_AVX2
-    return occluded_simd<Float<8>>(&rays, active, coherence);
+    return occluded_simd<avx2::Lanes8>(&rays, active, coherence);
 #else
     (void)coherence;
     return occluded_per_lane(rays, active);
@@ -198,7 +198,7 @@ class Scene {
   LaneMask occluded(std::span<const RayBatch, 2> rays, LaneMask active,
                     RayCoherence coherence = RayCoherence::unknown) const {
 #ifdef GLINT_AVX512
-    return occluded_simd<Float<16>>(rays.data(), active, coherence);
+    return occluded_simd<avx2::Lanes16>(rays.data(), active, coherence);
 #else
     return occluded(rays[0], batch_lanes(active, 0), coherence) |
            occluded(rays[1], batch_lanes(active, 1), coherence) << RayBatch::kWidth;
@@ -272,13 +272,13 @@ class Scene {
   }
 
 #ifdef GLINT_AVX2
-  /// The batched queries for the kLanesOf<F> / 8 batches from `rays` on, with each of the
-  /// single-ray ones' steps run for all lanes at once, the walls and the linear set in lanes of
-  /// F, the rest batch by batch.
-  template <FloatType F>
+  /// The batched queries for the L::kWidth / 8 batches from `rays` on, with each of the
+  /// single-ray ones' steps run for all lanes at once, the walls and the linear set in registers
+  /// of L, the rest batch by batch.
+  template <class L>
   LaneMask closest_hits_simd(const RayBatch* rays, LaneMask active, HitBatch* hits,
                              RayCoherence coherence) const {
-    constexpr int kBatches = kLanesOf<F> / RayBatch::kWidth;
+    constexpr int kBatches = L::kWidth / RayBatch::kWidth;
     // closest_hit's steps, each for all lanes: the origin sphere, the linear sets, the BVH.
     HitBatch hit[kBatches];
     LaneMask found = 0;
@@ -290,13 +290,13 @@ class Scene {
     if (!walls_.empty() || !linear_.empty()) {
       // hit_to_beat in every lane: the origin sphere's hit where there is one, else (t_max, 0);
       // t = -infinity, which nothing beats, in a lane without a ray.
-      const HitLanes<F> so_far = simd::hit_lanes<F>(hit);
-      HitLanes<F> best(select(mask_of_bits<MaskFor<F>>(active), so_far.t, splat<F>(-kInfinity)),
-                       keep(mask_of_bits<MaskFor<F>>(found), so_far.sphere));
+      const BasicHitLanes<L> so_far = avx2::hit_lanes<L>(hit);
+      BasicHitLanes<L> best(L::select(L::mask_of_bits(active), so_far.t, L::splat(-kInfinity)),
+                            L::keep(L::mask_of_bits(found), so_far.sphere));
       const LaneMask linear_found =
-          simd::closest_hits(simd::ray_lanes<F>(rays), best, walls_.columns(), linear_.columns()) &
+          avx2::closest_hits(avx2::ray_lanes<L>(rays), best, walls_.columns(), linear_.columns()) &
           active;
-      simd::store_lanes(best, linear_found, hit);
+      avx2::store_lanes(best, linear_found, hit);
       found |= linear_found;
     }
     LaneMask answered = 0;
@@ -311,15 +311,15 @@ class Scene {
         batch_found |= tree_found;
       }
       // The lanes without a hit say so (t = kInfinity, no sphere); the others give theirs.
-      simd::store_lanes(HitLanes<Float<8>>(SphereHit{}), lanes & ~batch_found, &hits[i]);
-      simd::store_lanes(simd::hit_lanes(&hit[i]), batch_found, &hits[i]);
+      avx2::store_lanes(avx2::HitLanes(SphereHit{}), lanes & ~batch_found, &hits[i]);
+      avx2::store_lanes(avx2::hit_lanes(&hit[i]), batch_found, &hits[i]);
       answered |= batch_found << (RayBatch::kWidth * i);
     }
     return answered;
   }
-  template <FloatType F>
+  template <class L>
   LaneMask occluded_simd(const RayBatch* rays, LaneMask active, RayCoherence coherence) const {
-    constexpr int kBatches = kLanesOf<F> / RayBatch::kWidth;
+    constexpr int kBatches = L::kWidth / RayBatch::kWidth;
     LaneMask blocked = 0;
     for (int i = 0; i < kBatches; ++i) {
       HitBatch hit = no_hits_within(rays[i]);
@@ -344,23 +344,23 @@ class Scene {
       // single-ray one at its ray's first blocker: for random shadow rays in a room of 40
       // spheres it is 0.92x as fast as eight single-ray queries, but a scan per lane measured
       // no better (0.88x, its overhead); for shadow rays of camera blocks it is 1.4x.
-      const SphereTestRays<F> lanes = simd::ray_lanes<F>(rays);
-      const F t_max = simd::column_lanes<F>(rays, &RayBatch::t_max);
+      const BasicRayLanes<L> lanes = avx2::ray_lanes<L>(rays);
+      const typename L::F t_max = avx2::column_lanes<L>(rays, &RayBatch::t_max);
       // The bound, hit_to_beat(ray, SphereHit{}): (t_max, 0); -infinity without a ray.
       const auto bound = [&](LaneMask with_ray) {
-        return HitLanes<F>(select(mask_of_bits<MaskFor<F>>(with_ray), t_max, splat<F>(-kInfinity)),
-                           splat<UIntFor<F>>(0u));
+        return BasicHitLanes<L>(L::select(L::mask_of_bits(with_ray), t_max, L::splat(-kInfinity)),
+                                L::splat(std::int32_t(0)));
       };
       if (linear_pending == pending) {
         blocked |=
-            simd::any_hits(lanes, bound(pending), pending, walls_.columns(), linear_.columns());
+            avx2::any_hits(lanes, bound(pending), pending, walls_.columns(), linear_.columns());
       } else {
         if (!walls_.empty())
-          blocked |= simd::any_hits(lanes, bound(pending), pending, walls_.columns());
+          blocked |= avx2::any_hits(lanes, bound(pending), pending, walls_.columns());
         linear_pending &= ~blocked;
         if (linear_pending != 0)
           blocked |=
-              simd::any_hits(lanes, bound(linear_pending), linear_pending, linear_.columns());
+              avx2::any_hits(lanes, bound(linear_pending), linear_pending, linear_.columns());
       }
       pending = active & ~blocked;
     }
@@ -381,7 +381,7 @@ class Scene {
   [[gnu::noinline]] bool closest_linear_hit(const Ray& ray, SphereHit& hit) const {
 #ifdef GLINT_AVX2
     SphereHit best = hit_to_beat(ray, hit);
-    if (!simd::closest_hit(ray, best, walls_.columns(), linear_.columns())) return false;
+    if (!avx2::closest_hit(ray, best, walls_.columns(), linear_.columns())) return false;
     hit = best;
     return true;
 #else
@@ -391,7 +391,7 @@ class Scene {
   }
   [[gnu::noinline]] bool any_linear_hit(const Ray& ray) const {
 #ifdef GLINT_AVX2
-    return simd::any_hit(ray, hit_to_beat(ray, SphereHit{}), walls_.columns(), linear_.columns());
+    return avx2::any_hit(ray, hit_to_beat(ray, SphereHit{}), walls_.columns(), linear_.columns());
 #else
     return walls_.any_hit(ray) || (!linear_.empty() && linear_.any_hit(ray));
 #endif
@@ -414,17 +414,17 @@ class Scene {
   /// The lanes of `pending` whose ray a light buffer takes (one ending at its light) go into
   /// `served`; returns those of them that a sphere of the linear set blocks.
   LaneMask light_buffer_hits(const RayBatch& rays, LaneMask pending, LaneMask& served) const {
-    const SphereTestRays<Float<8>> lanes = simd::ray_lanes(rays);
-    const Float<8> t_max = load<Float<8>>(rays.t_max);
+    const avx2::RayLanes lanes = avx2::ray_lanes(rays);
+    const __m256 t_max = _mm256_load_ps(rays.t_max);
     LaneMask unmatched = pending;
     LaneMask blocked = 0;
-    std::int32_t cell[RayBatch::kWidth];
+    alignas(32) std::int32_t cell[RayBatch::kWidth];
     bool have_cells = false;
     for (const LightBuffer& buffer : light_buffers_) {
       const LaneMask here = buffer.ends_here(lanes, t_max, unmatched);
       if (here == 0) continue;
       if (!have_cells) {
-        store(cell, LightBuffer::cells(lanes));
+        _mm256_store_si256(reinterpret_cast<__m256i*>(cell), LightBuffer::cells(lanes));
         have_cells = true;
       }
       unmatched &= ~here;

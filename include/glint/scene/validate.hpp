@@ -6,7 +6,6 @@
 // can run each one as soon as its statement is parsed: the first error reported is then the
 // first one in the file, whatever kind it is.
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -50,7 +49,7 @@ inline bool non_negative(const Vec3& v) {
 /// An empty string if every coordinate of the point is within limits::max_coordinate, else the
 /// complaint about `what` (e.g. "sphere center"). Only for finite points.
 inline std::string coordinate_problem(const char* what, const Vec3& point) {
-  const float largest = std::max(std::max(std::abs(point.z), std::abs(point.y)), std::abs(point.x));
+  const float largest = max_of(std::abs(point.x), max_of(std::abs(point.y), std::abs(point.z)));
   if (largest <= limits::max_coordinate) return {};
   return concat({what, " coordinates must be within +-", format_number(limits::max_coordinate),
                  " (the scene format's limit), got ", format_number(largest)});

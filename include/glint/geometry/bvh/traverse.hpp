@@ -15,8 +15,8 @@
 #include "glint/geometry/bvh/build.hpp"
 #include "glint/geometry/bvh/wide.hpp"
 #include "glint/geometry/ray.hpp"
+#include "glint/geometry/simd.hpp"
 #include "glint/instruction_set.hpp"
-#include "glint/math/wide.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE::bvh {
 
@@ -35,39 +35,39 @@ concept LaneLeafTest = requires(F& test_leaf, int lane, std::uint32_t first, std
   { test_leaf(lane, first, count, best) } -> std::same_as<bool>;
 };
 
-/// Axis-aligned boxes, one per lane (math/wide.hpp's numbers).
-template <FloatType F>
+/// Axis-aligned boxes, one per lane of L's registers (geometry/simd.hpp).
+template <class L>
 struct BoxLanes {
-  F lower_x, lower_y, lower_z, upper_x, upper_y, upper_z;
+  typename L::F lower_x, lower_y, lower_z, upper_x, upper_y, upper_z;
 };
 
 /// A ray's origin and the reciprocals of its direction's components, per lane.
-template <FloatType F>
+template <class L>
 struct SlabRayLanes {
-  F ox, oy, oz, inverse_x, inverse_y, inverse_z;
+  typename L::F ox, oy, oz, inverse_x, inverse_y, inverse_z;
 };
 
-template <FloatType F>
+template <class L>
 struct SlabInterval {
-  F near, far;
+  typename L::F near, far;
 };
 
 /// The slab test, lane by lane: the interval of t in which the lane's ray is inside the lane's
 /// box, clipped to [t_min, t_max]; the ray enters the box where near <= far (NaN: not). Written
-/// once for one ray and one box (float), one ray and the eight boxes of a node, and eight rays
-/// and one box (Float<8>). The order of each min's and max's operands decides which one a NaN
-/// gives way to (math/wide.hpp: the first operand where either is NaN).
-template <FloatType F>
-inline SlabInterval<F> slab_interval(const SlabRayLanes<F>& ray, const BoxLanes<F>& box, F t_min,
-                                     F t_max) {
-  const F ax = (box.lower_x - ray.ox) * ray.inverse_x;
-  const F bx = (box.upper_x - ray.ox) * ray.inverse_x;
-  const F ay = (box.lower_y - ray.oy) * ray.inverse_y;
-  const F by = (box.upper_y - ray.oy) * ray.inverse_y;
-  const F az = (box.lower_z - ray.oz) * ray.inverse_z;
-  const F bz = (box.upper_z - ray.oz) * ray.inverse_z;
-  return {max(max(t_min, min(bz, az)), max(min(by, ay), min(bx, ax))),
-          min(min(t_max, max(bz, az)), min(max(by, ay), max(bx, ax)))};
+/// once for one ray and one box (Lanes1), one ray and the eight boxes of a node, and eight rays
+/// and one box.
+template <class L>
+inline SlabInterval<L> slab_interval(const SlabRayLanes<L>& ray, const BoxLanes<L>& box,
+                                     typename L::F t_min, typename L::F t_max) {
+  using F = typename L::F;
+  const F ax = L::mul(L::sub(box.lower_x, ray.ox), ray.inverse_x);
+  const F bx = L::mul(L::sub(box.upper_x, ray.ox), ray.inverse_x);
+  const F ay = L::mul(L::sub(box.lower_y, ray.oy), ray.inverse_y);
+  const F by = L::mul(L::sub(box.upper_y, ray.oy), ray.inverse_y);
+  const F az = L::mul(L::sub(box.lower_z, ray.oz), ray.inverse_z);
+  const F bz = L::mul(L::sub(box.upper_z, ray.oz), ray.inverse_z);
+  return {L::max(L::max(L::min(ax, bx), L::min(ay, by)), L::max(L::min(az, bz), t_min)),
+          L::min(L::min(L::max(ax, bx), L::max(ay, by)), L::min(L::max(az, bz), t_max))};
 }
 
 /// The slots of a wide node that a ray enters (bit c for slot c), split by kind.
@@ -84,28 +84,31 @@ inline EnteredSlots enter_boxes(const WideNode& node, const Vec3& origin,
   static_assert(kWideWidth == 8);
   unsigned entered = 0, empty = 0, leaves = 0;
 #if defined(GLINT_AVX2)
-  using F = Float<kWideWidth>;
-  const SlabRayLanes<F> ray{splat<F>(origin.x),
-                            splat<F>(origin.y),
-                            splat<F>(origin.z),
-                            splat<F>(inverse_direction.x),
-                            splat<F>(inverse_direction.y),
-                            splat<F>(inverse_direction.z)};
-  const BoxLanes<F> boxes{load<F>(node.lower_x), load<F>(node.lower_y), load<F>(node.lower_z),
-                          load<F>(node.upper_x), load<F>(node.upper_y), load<F>(node.upper_z)};
-  const SlabInterval<F> inside = slab_interval(ray, boxes, splat<F>(t_min), splat<F>(t_max));
-  store(enter, inside.near);
-  entered = bits_of_mask(inside.near <= inside.far);
-  using I = Int<kWideWidth>;
-  empty = bits_of_mask(load<I>(node.child) == -1);
-  leaves = bits_of_mask(load<I>(node.count) > 0);
+  using L = avx2::Lanes8;
+  const SlabRayLanes<L> ray{L::splat(origin.x),
+                            L::splat(origin.y),
+                            L::splat(origin.z),
+                            L::splat(inverse_direction.x),
+                            L::splat(inverse_direction.y),
+                            L::splat(inverse_direction.z)};
+  const BoxLanes<L> boxes{L::load(node.lower_x), L::load(node.lower_y), L::load(node.lower_z),
+                          L::load(node.upper_x), L::load(node.upper_y), L::load(node.upper_z)};
+  const SlabInterval<L> inside = slab_interval(ray, boxes, L::splat(t_min), L::splat(t_max));
+  _mm256_storeu_ps(enter, inside.near);
+  entered = L::bits(L::less_equal(inside.near, inside.far));
+  const __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
+  const __m256i count = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.count));
+  empty = unsigned(
+      _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(child, _mm256_set1_epi32(-1)))));
+  leaves = unsigned(
+      _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(count, _mm256_setzero_si256()))));
 #else
-  const SlabRayLanes<float> ray{
+  const SlabRayLanes<Lanes1> ray{
       origin.x, origin.y, origin.z, inverse_direction.x, inverse_direction.y, inverse_direction.z};
   for (int c = 0; c < kWideWidth; ++c) {
-    const BoxLanes<float> box{node.lower_x[c], node.lower_y[c], node.lower_z[c],
-                              node.upper_x[c], node.upper_y[c], node.upper_z[c]};
-    const SlabInterval<float> inside = slab_interval(ray, box, t_min, t_max);
+    const BoxLanes<Lanes1> box{node.lower_x[c], node.lower_y[c], node.lower_z[c],
+                               node.upper_x[c], node.upper_y[c], node.upper_z[c]};
+    const SlabInterval<Lanes1> inside = slab_interval(ray, box, t_min, t_max);
     enter[c] = inside.near;
     entered |= unsigned(inside.near <= inside.far) << c;
     empty |= unsigned(node.child[c] == kEmptySlot) << c;
@@ -123,10 +126,14 @@ inline EnteredSlots enter_boxes(const WideNode& node, const Vec3& origin,
 inline int nearest_slot(const float (&enter)[kWideWidth], unsigned mask) {
   if ((mask & (mask - 1)) == 0) return std::countr_zero(mask);
 #if defined(GLINT_AVX2)
-  using F = Float<kWideWidth>;
-  const F entries =
-      select(mask_of_bits<Mask<kWideWidth>>(mask), load<F>(enter), splat<F>(kInfinity));
-  const unsigned at = bits_of_mask(entries == min_across_lanes(entries)) & mask;
+  const __m256 in_mask = _mm256_castsi256_ps(avx2::lane_vector(mask));
+  const __m256 entries =
+      _mm256_blendv_ps(_mm256_set1_ps(kInfinity), _mm256_loadu_ps(enter), in_mask);
+  __m256 smallest = _mm256_min_ps(entries, _mm256_permute_ps(entries, 0b10110001));
+  smallest = _mm256_min_ps(smallest, _mm256_permute_ps(smallest, 0b01001110));
+  smallest = _mm256_min_ps(smallest, _mm256_permute2f128_ps(smallest, smallest, 1));
+  const unsigned at =
+      unsigned(_mm256_movemask_ps(_mm256_cmp_ps(entries, smallest, _CMP_EQ_OQ))) & mask;
   return std::countr_zero(at != 0 ? at : mask);
 #else
   int nearest = std::countr_zero(mask);
@@ -210,9 +217,8 @@ template <bool kAnyHit, LeafTest TestLeaf>
 /// reach before `best`; returns whether any call found a hit. With kAnyHit it returns at the
 /// first such hit. The next node is next_node's.
 ///
-/// Always inlined, for speed: left to itself GCC keeps it out of line, and a render of 300
-/// random spheres took 7.5% more instructions at --simd avx2 and 3.3% more at scalar
-/// (callgrind, glint-render 64x64, 4 spp). The images are the same either way.
+/// Always inlined, for speed: left to itself GCC keeps it out of line, and a render of random
+/// spheres then takes more instructions per ray (callgrind). The images are the same either way.
 template <bool kAnyHit, LeafTest TestLeaf>
 [[gnu::always_inline]] inline bool traverse(const std::vector<WideNode>& nodes, const Ray& ray,
                                             SphereHit& best, TestLeaf&& test_leaf) {
