@@ -9,31 +9,12 @@
 #include <utility>
 #include <vector>
 
+#include "glint/detail/text.hpp"
 #include "stop_signals.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
 namespace {
-
-/// `text` as a JSON string: quotes, backslashes and control characters escaped; other bytes as
-/// they are (a path in UTF-8 stays readable).
-std::string json_string(std::string_view text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (byte < 0x20 || byte == 0x7f) {
-      char escape[8];
-      std::snprintf(escape, sizeof escape, "\\u%04x", byte);
-      out += escape;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
 
 /// A double as JSON, to 9 significant digits; 0 for what JSON cannot hold (not finite).
 std::string json_number(double value) {
@@ -54,14 +35,14 @@ std::string stats_json(const Program& program, const Options& options, const std
   const double mrays = stats.seconds > 0.0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0;
   const auto integer = [](auto value) { return std::to_string(value); };
   const std::vector<std::pair<std::string_view, std::string>> members = {
-      {"program", json_string(program.name)},
-      {"version", json_string(GLINT_VERSION)},
-      {"variant", json_string(program.variant)},
-      {"execution_model", json_string(execution_model_name(model))},
-      {"simd", json_string(glint::simd_name(glint::kCompiledSimd))},
+      {"program", glint::detail::json_string(program.name)},
+      {"version", glint::detail::json_string(GLINT_VERSION)},
+      {"variant", glint::detail::json_string(program.variant)},
+      {"execution_model", glint::detail::json_string(execution_model_name(model))},
+      {"simd", glint::detail::json_string(glint::simd_name(glint::kCompiledSimd))},
       {"paths_at_once", integer(lanes)},
-      {"scene", json_string(options.scene)},
-      {"output", json_string(output)},
+      {"scene", glint::detail::json_string(options.scene)},
+      {"output", glint::detail::json_string(output)},
       {"width", integer(settings.width)},
       {"height", integer(settings.height)},
       {"samples_per_pixel", integer(result.samples_per_pixel)},
@@ -79,11 +60,12 @@ std::string stats_json(const Program& program, const Options& options, const std
       {"invalid_samples", integer(stats.invalid_samples)},
       {"clamped_pixels", integer(stats.clamped_pixels)},
       {"complete", result.complete() ? "true" : "false"},
-      {"stopped_by", end.stop_signal ? json_string(signal_name(end.stop_signal)) : "null"},
+      {"stopped_by",
+       end.stop_signal ? glint::detail::json_string(signal_name(end.stop_signal)) : "null"},
       {"time_limit_reached", end.time_is_up ? "true" : "false"}};
   std::string json = "{\n";
   for (std::size_t i = 0; i < members.size(); ++i)
-    json += "  " + json_string(members[i].first) + ": " + members[i].second +
+    json += "  " + glint::detail::json_string(members[i].first) + ": " + members[i].second +
             (i + 1 < members.size() ? ",\n" : "\n");
   return json + "}\n";
 }

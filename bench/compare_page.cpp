@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "compare_page_html.hpp"  // generated from compare_page.html (embed_page.cmake)
+#include "glint/detail/text.hpp"
 #include "glint/image/compare.hpp"
 #include "glint/image/false_color.hpp"
 #include "glint/image/tone_map.hpp"
@@ -387,24 +388,6 @@ std::vector<char> encode_error_png(const std::vector<float>& map, int width, int
 // ---------------------------------------------------------------------------------------------
 // JSON, read by the page with JSON.parse
 
-std::string json_string(std::string_view text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20 || c == '<') {
-      // '<' too: the JSON sits in a <script> element, which "</script>" would end.
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", unsigned(static_cast<unsigned char>(c)));
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
 std::string json_number(double value) {
   if (!std::isfinite(value)) return "null";
   char text[32];
@@ -436,12 +419,12 @@ void run(const Options& options) {
   // Everything is read, compared and encoded before anything is written.
   std::vector<glint::FileContents> files;
   std::ostringstream json;
-  json << "{\"title\": " << json_string(options.title)
-       << ", \"note\": " << json_string(options.note)
-       << ", \"toneMapping\": " << json_string(tone_mapping_text(options.tone_mapping))
+  json << "{\"title\": " << glint::detail::json_string(options.title)
+       << ", \"note\": " << glint::detail::json_string(options.note) << ", \"toneMapping\": "
+       << glint::detail::json_string(tone_mapping_text(options.tone_mapping))
        << ", \"errorEpsilon\": " << json_number(glint::kRelativeErrorEpsilon) << ", \"ramp\": [";
   for (std::size_t i = 0; i < glint::kErrorRamp.size(); ++i)
-    json << (i ? ", " : "") << json_string(css_color(glint::kErrorRamp[i]));
+    json << (i ? ", " : "") << glint::detail::json_string(css_color(glint::kErrorRamp[i]));
   json << "],\n\"scenes\": [";
 
   for (std::size_t s = 0; s < scenes.size(); ++s) {
@@ -476,12 +459,12 @@ void run(const Options& options) {
     const std::string baseline = !has_baseline              ? ""
                                  : options.baseline.empty() ? scene.variants.front().name
                                                             : options.baseline;
-    json << (s ? ",\n" : "") << "{\"name\": " << json_string(scene.name)
+    json << (s ? ",\n" : "") << "{\"name\": " << glint::detail::json_string(scene.name)
          << ", \"width\": " << reference.width() << ", \"height\": " << reference.height()
-         << ", \"baseline\": " << (baseline.empty() ? "null" : json_string(baseline))
+         << ", \"baseline\": " << (baseline.empty() ? "null" : glint::detail::json_string(baseline))
          << ", \"errorDecades\": [" << decades.first << ", " << decades.second << "]"
-         << ", \"reference\": {\"image\": " << json_string(reference_png)
-         << ", \"description\": " << json_string(scene.reference->description) << "}"
+         << ", \"reference\": {\"image\": " << glint::detail::json_string(reference_png)
+         << ", \"description\": " << glint::detail::json_string(scene.reference->description) << "}"
          << ", \"variants\": [";
     for (std::size_t v = 0; v < scene.variants.size(); ++v) {
       const Variant& variant = scene.variants[v];
@@ -492,11 +475,12 @@ void run(const Options& options) {
       for (const float e : maps[v])
         rel_mse += e;
       rel_mse /= double(maps[v].size());
-      json << (v ? ",\n  " : "\n  ") << "{\"name\": " << json_string(variant.name)
-           << ", \"description\": " << json_string(variant.description)
-           << ", \"image\": " << json_string(scene.name + "/variant-" + variant.name + ".png")
-           << ", \"errorImage\": " << json_string(error_png) << ", \"spp\": " << variant.spp
-           << ", \"cpu\": " << json_number(variant.cpu_seconds)
+      json << (v ? ",\n  " : "\n  ") << "{\"name\": " << glint::detail::json_string(variant.name)
+           << ", \"description\": " << glint::detail::json_string(variant.description)
+           << ", \"image\": "
+           << glint::detail::json_string(scene.name + "/variant-" + variant.name + ".png")
+           << ", \"errorImage\": " << glint::detail::json_string(error_png)
+           << ", \"spp\": " << variant.spp << ", \"cpu\": " << json_number(variant.cpu_seconds)
            << ", \"rmse\": " << json_number(comparisons[v].rmse)
            << ", \"relativeRmse\": " << json_number(comparisons[v].relative_rmse())
            << ", \"relMse\": " << json_number(rel_mse) << "}";

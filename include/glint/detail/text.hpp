@@ -1,10 +1,11 @@
 #pragma once
-// Building text: joining message pieces, and printing floats the same way everywhere (error
-// messages, scene files, the options a generated file records).
+// Building text: joining message pieces, printing floats the same way everywhere (error
+// messages, scene files, the options a generated file records), and JSON strings.
 
 #include <algorithm>
 #include <charconv>
 #include <cstddef>
+#include <cstdio>
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -72,6 +73,27 @@ inline std::string format_number(float value, FloatNotation notation = FloatNota
   std::string out;
   append_number(out, value, notation);
   return out;
+}
+
+/// `text` as a JSON string: quotes and backslashes escaped, control characters, DEL and '<' as
+/// \u00XX ('<' so that the JSON can sit in an HTML <script> element, which "</script>" would
+/// end); other bytes as they are (UTF-8 stays readable).
+inline std::string json_string(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (byte < 0x20 || byte == 0x7f || c == '<') {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", unsigned(byte));
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
 }
 
 }  // namespace detail

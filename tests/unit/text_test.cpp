@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "glint/detail/text.hpp"
@@ -215,4 +216,16 @@ TEST_CASE("float text: the longest text fits the bound exactly", "[detail][text]
       std::to_chars(text, text + sizeof text, -kMinSubnormal, std::chars_format::fixed);
   REQUIRE(plain.ec == std::errc{});
   CHECK(std::size_t(plain.ptr - text) == glint::detail::kMaxFloatTextLength);
+}
+
+TEST_CASE("JSON strings: quotes, backslashes, control characters and '<' escaped, UTF-8 kept",
+          "[detail][text]") {
+  using glint::detail::json_string;
+  CHECK(json_string("") == "\"\"");
+  CHECK(json_string("a \"b\" c\\d") == "\"a \\\"b\\\" c\\\\d\"");
+  CHECK(json_string(std::string_view("\n\t\x01\x1f\x7f", 5)) ==
+        "\"\\u000a\\u0009\\u0001\\u001f\\u007f\"");
+  CHECK(json_string(std::string_view("\0", 1)) == "\"\\u0000\"");
+  CHECK(json_string("</script>") == "\"\\u003c/script>\"");
+  CHECK(json_string("caf\xc3\xa9 ~") == "\"caf\xc3\xa9 ~\"");
 }
