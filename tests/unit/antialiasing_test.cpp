@@ -115,3 +115,83 @@ TEST_CASE("TentAntialiasing: triangular density 1 - |x| for |x| < 1",
   CHECK(glint::test::chi_square_equiprobable(uniform, bins, cdf) >
         10.0 * glint::test::chi_square_threshold(bins - 1));
 }
+
+namespace {
+
+/// The integral of Policy's density over the square of its footprint, by the midpoint rule on a
+/// grid of `steps` x `steps`, and the largest density found outside the footprint's square.
+template <typename Policy>
+double density_integral(float sigma, int steps) {
+  const double half = Policy::footprint(sigma);
+  const double step = 2.0 * half / steps;
+  double sum = 0.0;
+  for (int i = 0; i < steps; ++i)
+    for (int j = 0; j < steps; ++j)
+      sum += Policy::density(Vec2(float(-half + (i + 0.5) * step), float(-half + (j + 0.5) * step)),
+                             sigma);
+  return sum * step * step;
+}
+
+}  // namespace
+
+TEST_CASE("pixel filters: densities integrate to one within their footprints, zero outside",
+          "[antialiasing]") {
+  for (const float sigma : {0.25f, 0.5f, 1.5f}) {
+    INFO("sigma " << sigma);
+    CHECK(density_integral<glint::GaussianAntialiasing>(sigma, 800) == Approx(1.0).epsilon(1e-4));
+    const float reach = glint::GaussianAntialiasing::footprint(sigma);
+    CHECK(glint::GaussianAntialiasing::density(Vec2(reach * 1.001f, 0.0f), sigma) == 0.0f);
+    // The density at the centre and at one sigma, from the formula.
+    CHECK(glint::GaussianAntialiasing::density(Vec2(0.0f), sigma) ==
+          Approx(1.0 / (2.0 * M_PI * sigma * sigma)).epsilon(1e-6));
+    CHECK(glint::GaussianAntialiasing::density(Vec2(0.6f * sigma, 0.8f * sigma), sigma) ==
+          Approx(std::exp(-0.5) / (2.0 * M_PI * sigma * sigma)).epsilon(1e-6));
+  }
+  CHECK(glint::GaussianAntialiasing::footprint(0.0f) == 0.0f);
+  CHECK(glint::GaussianAntialiasing::density(Vec2(0.0f), 0.0f) == 0.0f);
+  CHECK(density_integral<glint::BoxAntialiasing>(0.5f, 400) == Approx(1.0).epsilon(1e-6));
+  CHECK(glint::BoxAntialiasing::density(Vec2(0.5f, 0.0f), 0.5f) == 0.0f);
+  CHECK(glint::BoxAntialiasing::density(Vec2(-0.5f, 0.0f), 0.5f) == 1.0f);
+  CHECK(density_integral<glint::TentAntialiasing>(0.5f, 400) == Approx(1.0).epsilon(1e-4));
+  CHECK(glint::TentAntialiasing::density(Vec2(0.5f, -0.5f), 0.5f) == 0.25f);
+  CHECK(glint::NoAntialiasing::footprint(0.5f) == 0.0f);
+  CHECK(glint::NoAntialiasing::density(Vec2(0.0f), 0.5f) == 0.0f);
+}
+
+TEST_CASE("pixel filters: the Gaussian density is that of the offsets drawn",
+          "[antialiasing][statistical]") {
+  // The drawn offsets' radius, binned in 32 rings of equal density mass: the count per ring
+  // against the mass the density gives it, integrated numerically from density().
+  const float sigma = 0.5f;
+  std::vector<double> xs, ys;
+  draw_offsets<glint::GaussianAntialiasing>(sigma, 11, xs, ys);
+  std::vector<double> radii;
+  for (std::size_t i = 0; i < xs.size(); ++i)
+    radii.push_back(std::sqrt(xs[i] * xs[i] + ys[i] * ys[i]));
+  const double reach = glint::GaussianAntialiasing::footprint(sigma);
+  // The cdf of the radius from the density: the integral of 2 pi r density(r) dr.
+  constexpr int kSteps = 20000;
+  std::vector<double> cdf(kSteps + 1, 0.0);
+  for (int i = 0; i < kSteps; ++i) {
+    const double r = (i + 0.5) * reach / kSteps;
+    cdf[std::size_t(i) + 1] =
+        cdf[std::size_t(i)] +
+        2.0 * M_PI * r * glint::GaussianAntialiasing::density(Vec2(float(r), 0.0f), sigma) * reach /
+            kSteps;
+  }
+  const auto radius_cdf = [&](double r) {
+    if (r >= reach) return 1.0;
+    const double at = r / reach * kSteps;
+    const auto i = std::size_t(at);
+    return cdf[i] + (cdf[i + 1] - cdf[i]) * (at - double(i));
+  };
+  const int bins = 32;
+  CHECK(glint::test::chi_square_equiprobable(radii, bins, radius_cdf) <
+        glint::test::chi_square_threshold(bins - 1));
+  // A density 5% too wide fails the same test: it can tell them apart.
+  std::vector<double> wider;
+  for (const double r : radii)
+    wider.push_back(r * 1.05);
+  CHECK(glint::test::chi_square_equiprobable(wider, bins, radius_cdf) >
+        glint::test::chi_square_threshold(bins - 1));
+}

@@ -159,3 +159,55 @@ TEST_CASE("validate rejects degenerate cameras", "[camera][validate]") {
   s.camera.up = {0.3f, 1.0f, 0.2f};  // need not be perpendicular
   CHECK_NOTHROW(glint::validate(s));
 }
+
+TEST_CASE("camera: a point seen through a film position connects back to that position",
+          "[camera]") {
+  glint::CameraDescription description = oblique_camera();
+  description.near = 0.5f;
+  const glint::Camera camera(description, 64, 48);
+  for (const Vec2 film :
+       {Vec2(0.5f, 0.5f), Vec2(31.7f, 20.2f), Vec2(63.9f, 47.1f), Vec2(-3.0f, 60.0f)}) {
+    const glint::Ray ray = camera.ray_through(film);
+    for (const float t : {1.0f, 7.5f, 300.0f}) {
+      const std::optional<glint::CameraConnection> c = camera.connect(ray.at(t));
+      REQUIRE(c.has_value());
+      CHECK(c->film.x == Approx(film.x).margin(2e-3));
+      CHECK(c->film.y == Approx(film.y).margin(2e-3));
+      CHECK(c->distance == Approx(t).epsilon(1e-5));
+      CHECK(c->unclipped_distance == Approx(t - ray.t_min).epsilon(1e-5));
+      CHECK(glm::dot(c->direction, ray.direction) == Approx(-1.0).margin(1e-6));
+    }
+  }
+  // Behind the camera, and between it and the near plane: not seen.
+  const glint::Ray centre = camera.ray_through(Vec2(32.0f, 24.0f));
+  CHECK_FALSE(camera.connect(centre.at(-2.0f)).has_value());
+  CHECK_FALSE(camera.connect(centre.at(0.4f)).has_value());
+}
+
+TEST_CASE("camera: its importance integrates to the film's pixels", "[camera]") {
+  // A pixel's measurement of a surface of unit radiance that fills the view is 1 (the mean
+  // radiance over the filter). Written as an integral over the surface (a plane facing the
+  // camera at distance 5), that is the integral of importance x cos x filter density per unit
+  // area: summed over every pixel (each filter integrating to one over the film), the integral
+  // of importance x cos over the part of the plane the film sees is the number of pixels.
+  glint::CameraDescription description;
+  description.position = {0.0f, 0.0f, 5.0f};
+  description.look_at = {0.0f, 0.0f, 0.0f};
+  description.fov_degrees = 40.0f;
+  const int width = 30, height = 20;
+  const glint::Camera camera(description, width, height);
+  const double half_height = 5.0 * std::tan(20.0 * M_PI / 180.0);
+  const double half_width = half_height * width / height;
+  constexpr int kSteps = 600;
+  double sum = 0.0;
+  for (int i = 0; i < kSteps; ++i)
+    for (int j = 0; j < kSteps; ++j) {
+      const Vec3 point(float(-half_width + (i + 0.5) * 2.0 * half_width / kSteps),
+                       float(-half_height + (j + 0.5) * 2.0 * half_height / kSteps), 0.0f);
+      const std::optional<glint::CameraConnection> c = camera.connect(point);
+      REQUIRE(c.has_value());
+      sum += double(c->importance) * c->direction.z;  // cos at the plane, whose normal is +z
+    }
+  sum *= (2.0 * half_width / kSteps) * (2.0 * half_height / kSteps);
+  CHECK(sum == Approx(double(width) * height).epsilon(1e-4));
+}

@@ -147,6 +147,21 @@ TEST_CASE("wide: log is within 3e-7 of the library's, relative, from 1e-30 to 3e
   CHECK(glint::log(1.0f) == 0.0f);
 }
 
+TEST_CASE("wide: exponential is within 3e-7 of the library's exp, relative, from -103 to 88",
+          "[wide][unit]") {
+  double worst = 0.0;
+  glint::Pcg32 rng(3, 4);
+  for (int round = 0; round < 1 << 17; ++round) {
+    const float x = -87.0f + 175.0f * rng.next_float();
+    const double exact = std::exp(double(x));
+    worst = std::max(worst, std::abs(double(glint::exponential(x)) - exact) / exact);
+  }
+  CHECK(worst <= 3e-7);
+  CHECK(glint::exponential(0.0f) == 1.0f);
+  CHECK(double(glint::exponential(-80.0f)) == Approx(std::exp(-80.0)).epsilon(3e-7));
+  CHECK(glint::exponential(-104.0f) == 0.0f);
+}
+
 TEST_CASE("wide: sin, cos, log and sqrt give the same bits at every width", "[wide][unit]") {
   Calls<1> angles;
   for (int k = 0; k < 4096; ++k)

@@ -6,6 +6,10 @@
 // finite float samples cannot overflow (a float is below 2^128 and a pixel has at most 2^20
 // samples), so a render's means are finite floats. Only sums from elsewhere (a forged checkpoint)
 // can have a mean beyond the float range: mean_color clamps it and says so.
+//
+// A render whose estimator splats (light paths connected to the camera: render/light_tracing.hpp)
+// also keeps a SplatSums layer of the same size, summed into each pixel's sum when the image is
+// made. A pixel's value is then (its samples' sum + its splats' sum) / samples per pixel.
 
 #include <cmath>
 #include <cstddef>
@@ -14,6 +18,7 @@
 #include <vector>
 
 #include "glint/image/film.hpp"
+#include "glint/image/splat_sums.hpp"
 #include "glint/instruction_set.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
@@ -23,10 +28,12 @@ using ColorSum = glm::dvec3;
 class PixelSums {
  public:
   PixelSums() = default;
-  PixelSums(int width, int height)
+  /// Sums of width x height pixels, with a layer of splats if `with_splats`.
+  PixelSums(int width, int height, bool with_splats = false)
       : width_(width),
         height_(height),
-        sums_(std::size_t(width) * std::size_t(height), ColorSum(0.0)) {}
+        sums_(std::size_t(width) * std::size_t(height), ColorSum(0.0)),
+        splats_(with_splats ? SplatSums(width, height) : SplatSums()) {}
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -38,10 +45,21 @@ class PixelSums {
   }
   const std::vector<ColorSum>& pixels() const { return sums_; }
 
+  bool has_splats() const { return !splats_.empty(); }
+  /// The splats' layer; empty() unless made with splats.
+  SplatSums& splats() { return splats_; }
+  const SplatSums& splats() const { return splats_; }
+
+  /// The sum of pixel (x, y)'s samples and splats.
+  ColorSum total(int x, int y) const {
+    return has_splats() ? at(x, y) + splats_.at(x, y) : at(x, y);
+  }
+
  private:
   int width_ = 0;
   int height_ = 0;
   std::vector<ColorSum> sums_;
+  SplatSums splats_;
 };
 
 /// The mean of `samples` samples whose sum is `sum`, as a float colour. A component beyond the
@@ -71,7 +89,7 @@ inline MeanImage mean_image(const PixelSums& sums, int samples) {
   for (int y = 0; y < sums.height(); ++y)
     for (int x = 0; x < sums.width(); ++x) {
       bool out_of_range = false;
-      image.film.at(x, y) = mean_color(sums.at(x, y), samples, out_of_range);
+      image.film.at(x, y) = mean_color(sums.total(x, y), samples, out_of_range);
       image.clamped_pixels += out_of_range ? 1 : 0;
     }
   return image;

@@ -251,11 +251,14 @@ inline auto failer(const std::string& name) {
 /// Encodes the checkpoint of a render with `key` after `passes_done` passes, when its pixels
 /// hold the sums `sums` of `samples_per_pixel_done` samples each, handing its bytes to
 /// `put(const char* data, std::size_t size)` in order, in pieces of at most some hundred
-/// kilobytes: a checkpoint written this way is never held whole in memory.
+/// kilobytes: a checkpoint written this way is never held whole in memory. Throws Error for sums
+/// with a splat layer, which this format does not hold.
 template <typename Put>
 void encode_checkpoint_pieces(const CheckpointKey& key, int passes_done, int samples_per_pixel_done,
                               const PixelSums& sums, Put&& put) {
   using namespace detail::checkpoint;
+  if (sums.has_splats())
+    throw Error("glint: a checkpoint cannot hold the splats of a light-traced render");
   std::vector<char> piece(kFixedHeader + key.variant.size() + kSettingsAndPasses);
   Writer out{piece.data()};
   out.bytes(kCheckpointMagic, sizeof kCheckpointMagic);

@@ -1,9 +1,10 @@
 #pragma once
-// sin, cos and log of glint's own, one polynomial for every width: the C library's functions
+// sin, cos, log and exp of glint's own, one polynomial for every width: the C library's functions
 // differ between libraries, versions and machines, and a vectorised library's between its scalar
 // and vector forms, so a pixel that depended on them would depend on more than the scene, the
 // settings and the seed. Accurate to about an ulp over the arguments the warps use.
 
+#include <cmath>
 #include <cstdint>
 
 #include "glint/instruction_set.hpp"
@@ -64,6 +65,22 @@ inline F log(F x) {
   y += -2.12194440e-4f * e;
   y += -0.5f * z;
   return m + y + 0.693359375f * e;
+}
+
+/// e^x for one float, x <= 88: x = k ln 2 + r with |r| <= ln 2 / 2 (ln 2 in two parts), Cephes
+/// expf's polynomial for e^r, then the exact scaling by 2^k. Below about -103 the result is 0.
+inline float exponential(float x) {
+  if (x < -103.0f) return 0.0f;
+  const float k = std::nearbyint(x * 1.44269504088896341f);
+  const float r = (x - k * 0.693359375f) + k * 2.12194440e-4f;
+  const float r2 = r * r;
+  float p = 1.9875691500e-4f * r + 1.3981999507e-3f;
+  p = p * r + 8.3334519073e-3f;
+  p = p * r + 4.1665795894e-2f;
+  p = p * r + 1.6666665459e-1f;
+  p = p * r + 5.0000001201e-1f;
+  const float e_r = p * r2 + r + 1.0f;
+  return std::ldexp(e_r, int(k));
 }
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -90,11 +90,15 @@ concept Fresnel = requires(float cos_incident, float eta_incident, float eta_tra
   { F::reflectance(cos_incident, eta_incident, eta_transmitted) } -> std::same_as<float>;
 };
 
-/// Where in the pixel a primary ray goes: an offset from the pixel centre, in pixels.
+/// Where in the pixel a primary ray goes: an offset from the pixel centre, in pixels; the
+/// density of those offsets (the pixel filter), and the half-width of the square beyond which
+/// it is zero (0: all rays through the centre, a filter with no density).
 template <typename A>
 concept Antialiasing = requires(Vec2 u, float sigma) {
   { A::enabled } -> std::convertible_to<bool>;
   { A::offset(u, sigma) } -> std::same_as<Vec2>;
+  { A::density(u, sigma) } -> std::same_as<float>;
+  { A::footprint(sigma) } -> std::same_as<float>;
 };
 
 /// A sphere's diffuse colour at a point, given the sphere's base colour and the unit direction

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <cmath>
+#include <optional>
+
 #include "glint/geometry/ray.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/math/elementary_functions.hpp"
@@ -7,6 +10,23 @@
 #include "glint/scene/scene_description.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
+
+/// Where the camera sees a point, for light that reaches the camera from it (a light path's
+/// vertex connected to the camera).
+struct CameraConnection {
+  Vec2 film;       ///< film coordinates of the point's image, in pixels (maybe off the film)
+  Vec3 direction;  ///< unit direction from the point to the camera
+  float distance;  ///< from the point to the camera
+  /// From the point to the near plane along `direction`: the part of the way that a sphere
+  /// can block (the camera's rays start at the near plane).
+  float unclipped_distance;
+  /// The camera's importance for light leaving the point towards it, per unit area and unit
+  /// cosine at the point: 1 / (p^2 cos^3(theta) distance^2), p the size of a pixel on the
+  /// plane at distance 1 and theta the angle between the ray and the viewing direction. A pixel's
+  /// value being the mean radiance over its filter's offsets (in pixels), light leaving the
+  /// point with radiance L adds L |cos| importance density(film - centre) to it per unit area.
+  float importance;
+};
 
 /// A pinhole camera. Film coordinates are in pixels: (0,0) is the top-left corner of the
 /// image, (width, height) the bottom-right one, so pixel (x, y) has its centre at
@@ -49,6 +69,24 @@ class Camera {
   }
 
   const Vec3& position() const { return position_; }
+
+  /// Where the camera sees `point`: none when it is behind the camera or not beyond the near
+  /// plane (ray_through's rays start there), the film position otherwise, on the film or not.
+  std::optional<CameraConnection> connect(const Vec3& point) const {
+    const Vec3 offset = point - position_;
+    const float depth = glm::dot(offset, forward_);
+    if (!(depth > near_) || !(depth > 0.0f)) return std::nullopt;
+    const float distance2 = glm::dot(offset, offset);
+    const float distance = std::sqrt(distance2);
+    const float cosine = depth / distance;
+    const float sx = glm::dot(offset, right_) / depth;
+    const float sy = glm::dot(offset, up_) / depth;
+    const Vec2 film(sx / pixel_scale_ + half_width_, half_height_ - sy / pixel_scale_);
+    const float importance =
+        1.0f / ((pixel_scale_ * pixel_scale_) * (cosine * cosine * cosine) * distance2);
+    return CameraConnection{film, -offset / distance, distance, distance - near_ / cosine,
+                            importance};
+  }
 
  private:
   Vec3 position_;

@@ -48,6 +48,13 @@
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
+/// Whether execution model E splats (adds light to pixels other than the one it renders, as a
+/// light tracer does): the sums it renders into then carry a splat layer.
+template <class E>
+inline constexpr bool kExecutionSplats = requires {
+  requires E::kSplats;
+};
+
 struct RenderResult {
   /// The mean of the samples of the completed passes; black when no pass completed.
   Film film;
@@ -229,6 +236,9 @@ class Renderer {
       fail(std::to_string(start.passes_done) + " passes done, of " + std::to_string(pass_count));
     if (!start.sums) {
       if (start.passes_done != 0) fail("passes done without their sums");
+    } else if (start.sums->has_splats() != kExecutionSplats<E>) {
+      fail(start.sums->has_splats() ? "sums with splats for a renderer that makes none"
+                                    : "sums without the splats this renderer makes");
     } else if (start.sums->width() != settings.width || start.sums->height() != settings.height) {
       fail("sums of " + std::to_string(start.sums->width()) + "x" +
            std::to_string(start.sums->height()) + " pixels for an image of " +
@@ -407,7 +417,8 @@ RenderResult Renderer<C, E>::render(const Scene& scene, const RenderSettings& se
   const std::vector<int> ends = pass_ends(settings.samples_per_pixel, settings.max_pass_samples);
   const std::size_t first_pass = check_start(from, settings, ends.size());
 
-  PixelSums sums = from.sums ? *from.sums : PixelSums(settings.width, settings.height);
+  PixelSums sums =
+      from.sums ? *from.sums : PixelSums(settings.width, settings.height, kExecutionSplats<E>);
   RenderResult result{
       {}, {}, first_pass ? ends[first_pass - 1] : 0, int(first_pass), int(ends.size()), {}};
   const E execution(scene, settings);
@@ -483,6 +494,9 @@ RenderStats Renderer<C, E>::render_tiles(const Scene& scene, const RenderSetting
     throw SettingsError("glint: sums of " + std::to_string(sums.width()) + "x" +
                         std::to_string(sums.height()) + " pixels for an image of " +
                         std::to_string(settings.width) + "x" + std::to_string(settings.height));
+  if (sums.has_splats() != kExecutionSplats<E>)
+    throw SettingsError(sums.has_splats() ? "glint: sums with splats for a renderer that makes none"
+                                          : "glint: sums without the splats this renderer makes");
   const auto start = std::chrono::steady_clock::now();
   const E execution(scene, settings);
   const TileGrid grid(settings);

@@ -110,6 +110,13 @@ using SurfaceInteraction = BasicSurfaceInteraction<float>;
 /// The three lobes of the report's material.
 enum class Lobe : std::uint8_t { diffuse, mirror, transmission };
 
+/// What a path carries: radiance (a camera path, followed from the eye) or importance (a light
+/// path, followed from a light). The two see the same material but for refraction: a camera
+/// path's radiance goes through an interface unscaled, so a light path, its adjoint, is scaled by
+/// (incident index / transmitted index)^2 there, the ratio of the solid angles the interface
+/// maps onto each other. (A path that enters and leaves a sphere is scaled by 1 either way.)
+enum class Transport : std::uint8_t { radiance, importance };
+
 /// A Lobe per lane: the Lobe itself at width 1, its value in an Int lane wider.
 template <typename F>
 using LobeFor = std::conditional_t<kLanesOf<F> == 1, Lobe, IntFor<F>>;
@@ -182,7 +189,7 @@ class ReportMaterial {
   /// Samples lobe `lobe` alone in the lanes of `lanes`; its weight carries the lobe's
   /// coefficient (for the estimator that follows every lobe). Diffuse draws one next_2d;
   /// transmission one next_1d where Fresnel applies; the mirror draws nothing.
-  template <typename Draws>
+  template <Transport mode = Transport::radiance, typename Draws>
   BasicScatterSample<F> sample_lobe(Lobe lobe, Draws& draws, M lanes = mask_of<M>(true)) const {
     switch (lobe) {
       case Lobe::diffuse: {
@@ -195,9 +202,9 @@ class ReportMaterial {
                 splat<F>(1.0f),     mask_of<M>(true), lobe_lanes<F>(Lobe::mirror)};
       case Lobe::transmission:
       default: {
-        BasicScatterSample<F> s = sample_transmission(draws, lanes);
+        BasicScatterSample<F> s = sample_transmission<mode>(draws, lanes);
         s.tint = s_.transparent_color;
-        s.factor = s_.transparent;
+        s.factor = mode == Transport::radiance ? s_.transparent : s_.transparent * s.factor;
         return s;
       }
     }
@@ -206,7 +213,7 @@ class ReportMaterial {
   /// Chooses one lobe per lane with probability coefficient / total (one next_1d), then
   /// samples it; the weight is divided by that probability and the pdf multiplied by it, so
   /// the expectation is that of following every lobe. Requires scatters() in `lanes`.
-  template <typename Draws>
+  template <Transport mode = Transport::radiance, typename Draws>
   BasicScatterSample<F> sample(Draws& draws, M lanes = mask_of<M>(true)) const {
     const F u = next_1d(draws, lanes) * total_;
     const M diffuse = u < s_.diffuse;
@@ -217,9 +224,11 @@ class ReportMaterial {
     BasicScatterSample<F> s{mirror_direction(), s_.mirror_color,  total_,
                             s_.mirror / total_, mask_of<M>(true), lobe_lanes<F>(Lobe::mirror)};
     if (any(transmits)) {
-      const BasicScatterSample<F> t = sample_transmission(draws, transmits);
+      const BasicScatterSample<F> t = sample_transmission<mode>(draws, transmits);
       s.direction = select(transmits, t.direction, s.direction);
       s.tint = select(transmits, s_.transparent_color, s.tint);
+      if constexpr (mode == Transport::importance)
+        s.factor = select(transmits, s.factor * t.factor, s.factor);
       s.pdf = select(transmits, t.pdf * (s_.transparent / total_), s.pdf);
       s.lobe = select(transmits, t.lobe, s.lobe);
     }
@@ -283,9 +292,10 @@ class ReportMaterial {
 
   /// The direction light continues in through a transparent surface: refracted, or reflected
   /// on total internal reflection or (fully transparent spheres with Fresnel) with probability
-  /// F, for the lanes of `lanes`. The pdf is the probability of the branch taken; tint and
-  /// factor are left for the caller.
-  template <typename Draws>
+  /// F, for the lanes of `lanes`. The pdf is the probability of the branch taken; the tint is
+  /// left for the caller, and the factor is the adjoint's scaling for importance (1 for
+  /// radiance, and where the light reflects).
+  template <Transport mode, typename Draws>
   BasicScatterSample<F> sample_transmission(Draws& draws, M lanes) const {
     const F eta_incident = select(at_.from_inside, s_.ior, s_.ior_outside);
     const F eta_transmitted = select(at_.from_inside, s_.ior_outside, s_.ior);
@@ -304,9 +314,14 @@ class ReportMaterial {
         pdf = select(by_fresnel, select(fresnel_reflects, reflectance, 1.0f - reflectance), pdf);
       }
     }
+    F factor = splat<F>(1.0f);
+    if constexpr (mode == Transport::importance) {
+      const F ratio = eta_incident / eta_transmitted;
+      factor = select(reflects, factor, ratio * ratio);
+    }
     return {select(reflects, mirror_direction(), refracted.direction),
             splat_vector<V3>(Color(0.0f)),
-            splat<F>(0.0f),
+            factor,
             pdf,
             mask_of<M>(true),
             lobe_lanes<F>(Lobe::transmission)};

@@ -1,0 +1,125 @@
+#pragma once
+// Light tracing: paths followed from the lights, each vertex connected to the camera. It finds
+// the light that camera paths cannot: a point light's light focused by glass onto a diffuse
+// surface (a caustic), which a camera path can reach only through a shadow ray that the glass
+// blocks. It cannot find what the camera sees through a mirror or glass, or a point light's
+// direct view (a connection to the camera needs a surface that scatters in every direction), so
+// on its own it estimates the light of the paths whose first vertex from the camera is diffuse
+// or on a light; the bidirectional estimators combine it with camera paths.
+//
+// A path's contributions are splats: each lands where the camera sees its vertex, on whichever
+// pixels' filters cover that point. The same Config as the camera paths: its sampler, Fresnel,
+// sphere shading, diffuse sampling and path termination; the report's material followed one lobe
+// per vertex (ReportMaterial::sample, in the importance transport mode).
+//
+// Path length is counted as the camera paths count it, so that both estimate the same image for
+// the same max_depth: the light of an emissive sphere after at most max_depth scattering
+// vertices between it and the camera, that of a point light after at most max_depth + 1 (a
+// camera path gathers point lights even at the vertex where it stops).
+
+#include <cmath>
+#include <optional>
+
+#include "glint/config.hpp"
+#include "glint/geometry/ray.hpp"
+#include "glint/instruction_set.hpp"
+#include "glint/render/camera.hpp"
+#include "glint/render/estimators/path_context.hpp"
+#include "glint/render/light_emission.hpp"
+#include "glint/render/scattering.hpp"
+#include "glint/scene/scene.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE {
+
+/// Follows light paths with the policies of Config C and hands each connection to the camera to
+/// a splat callback.
+template <RenderConfig C>
+class LightTracer {
+ public:
+  using SamplerType = typename C::sampler;
+
+  LightTracer(const Scene& scene, const Camera& camera, int max_depth)
+      : scene_(scene), camera_(camera), emission_(scene), max_depth_(max_depth) {}
+
+  const LightEmission& emission() const { return emission_; }
+
+  /// Follows one light path with values from `sampler` (started by the caller) and calls
+  /// `splat(film, value)` for each of its connections to the camera: `value` is the light the
+  /// connection brings, per unit of the pixel filter's density at `film` minus a pixel's centre.
+  /// Draws, in order: the light (1d), the point on it (2d), the direction (2d); then at each
+  /// vertex roulette where C::path_termination plays (1d) and the lobe (as
+  /// ReportMaterial::sample).
+  template <typename Splat>
+  void trace(SamplerType& sampler, Splat&& splat, TraceCounters& counters) const {
+    if (emission_.empty()) return;
+    const float u_light = sampler.next_1d();
+    const Vec2 u_point = sampler.next_2d();
+    const LightOrigin origin = emission_.sample_origin(u_light, u_point);
+    const LightRay emitted = LightEmission::sample_ray(origin, sampler.next_2d());
+    // The vertices a path may have between the light and the camera (see above).
+    const int most_vertices = origin.is_point_light() ? max_depth_ + 1 : max_depth_;
+
+    if (!origin.is_point_light()) {
+      // The emissive sphere seen by the camera: its radiance from the point, both sides.
+      if (const std::optional<CameraConnection> to_camera = camera_.connect(origin.point)) {
+        const float cosine = std::fabs(glm::dot(to_camera->direction, origin.normal));
+        const Ray shadow = ray_leaving_sphere(origin.point, to_camera->direction, origin.sphere,
+                                              origin.normal, to_camera->unclipped_distance);
+        ++counters.rays;
+        if (cosine > 0.0f && !scene_.occluded(shadow))
+          splat(to_camera->film, origin.weight * (cosine * to_camera->importance));
+      }
+    }
+
+    Ray ray = emitted.ray;
+    Color weight = emitted.weight;
+    const float start = max_component(weight);
+    for (int vertex = 1; vertex <= most_vertices; ++vertex) {
+      ++counters.rays;
+      const std::optional<SphereHit> hit = scene_.closest_hit(ray);
+      if (!hit) return;
+      const SurfaceInteraction it =
+          SurfaceInteraction::at_hit(scene_, ray.origin, ray.direction, hit->t, hit->sphere, true);
+      const ReportMaterial<C> material(it, ray.direction);
+      if (material.has_lobe(Lobe::diffuse)) connect(it, material, weight, splat, counters);
+      if (vertex == most_vertices || !material.scatters()) return;
+      // Roulette on the weight relative to the light's, which is what a camera path's
+      // throughput of one means here.
+      if constexpr (C::path_termination::uses_roulette) {
+        const float p =
+            C::path_termination::continue_probability(vertex - 1, max_component(weight) / start);
+        if (p < 1.0f) {
+          if (sampler.next_1d() >= p) return;
+          weight /= p;
+        }
+      }
+      const ScatterSample next = material.template sample<Transport::importance>(sampler);
+      weight *= next.weight();
+      ray = PathContext<C>::continue_rays(it, next.direction);
+    }
+  }
+
+ private:
+  /// The connection of a diffuse vertex, reached with `weight`, to the camera.
+  template <typename Splat>
+  void connect(const SurfaceInteraction& it, const ReportMaterial<C>& material, const Color& weight,
+               Splat& splat, TraceCounters& counters) const {
+    const std::optional<CameraConnection> to_camera = camera_.connect(it.point);
+    if (!to_camera) return;
+    // f cos at the vertex; zero where the camera is on the other side of the surface.
+    const Color reflected = material.evaluate(to_camera->direction);
+    if (reflected.r == 0.0f && reflected.g == 0.0f && reflected.b == 0.0f) return;
+    ++counters.rays;
+    const Ray shadow = ray_leaving_sphere(it.point, to_camera->direction, it.sphere,
+                                          it.outward_normal, to_camera->unclipped_distance);
+    if (scene_.occluded(shadow)) return;
+    splat(to_camera->film, weight * reflected * to_camera->importance);
+  }
+
+  const Scene& scene_;
+  const Camera& camera_;
+  LightEmission emission_;
+  int max_depth_;
+};
+
+}  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -1,0 +1,144 @@
+#pragma once
+// Where light paths start: a light of the scene chosen in proportion to its power, a point on
+// it and a direction it emits in, with the weight that makes the path an unbiased estimate of
+// the light it carries. Point lights and emissive spheres are the scene's lights; the background
+// is not one of them (a scene whose background is not black cannot be light traced, see
+// LightEmission::supports).
+//
+// Units, as the camera paths see them (render/estimators/path_context.hpp): a point light of
+// intensity I and colour c emits I c watts per steradian in every direction, 4 pi I c in all; an
+// emissive sphere of radiance L emits L from both sides of its surface, pi L per unit area on
+// each side, 2 pi L times its area in all.
+
+#include <cstdint>
+#include <vector>
+
+#include "glint/geometry/ray.hpp"
+#include "glint/instruction_set.hpp"
+#include "glint/math/sampling.hpp"
+#include "glint/math/vector.hpp"
+#include "glint/scene/scene.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE {
+
+/// The start of a light path: a point on a light and the light's emission there over the
+/// densities of having chosen them.
+struct LightOrigin {
+  Vec3 point;
+  /// The outward normal of the emissive sphere at the point; zero for a point light.
+  Vec3 normal;
+  std::uint32_t sphere;  ///< the emissive sphere the point lies on; kNoSphere for a point light
+  /// For a sphere: its radiance over (probability of the light x density of the point per unit
+  /// area). For a point light: its intensity times colour over the probability of the light.
+  Color weight;
+  bool is_point_light() const { return sphere == kNoSphere; }
+};
+
+/// The first ray of a light path and the weight it carries: the light's emission along it over
+/// the densities of the choices that made it (light, point, direction), cosine included.
+struct LightRay {
+  Ray ray;
+  Color weight;
+};
+
+/// The scene's lights as light paths see them.
+class LightEmission {
+ public:
+  explicit LightEmission(const Scene& scene) {
+    std::vector<double> power;
+    for (std::uint32_t i = 0; i < scene.lights().size(); ++i) {
+      const PointLight& light = scene.lights()[i];
+      add(Kind::point, i, 4.0 * double(kPi) * double(light.intensity) * mean(light.color), power);
+    }
+    for (std::uint32_t i = 0; i < scene.emitters().size(); ++i) {
+      const SphereEmitter& e = scene.emitters()[i];
+      add(Kind::sphere, i, 2.0 * double(kPi) * double(e.area()) * mean(e.radiance), power);
+    }
+    double total = 0.0;
+    for (const double p : power)
+      total += p;
+    double sum = 0.0;
+    float previous = 0.0f;
+    for (std::size_t i = 0; i < lights_.size(); ++i) {
+      sum += power[i];
+      const float cdf = i + 1 == lights_.size() ? 1.0f : float(total > 0.0 ? sum / total : 0.0);
+      // The probability is the width of the choice's step of the cdf as stored, so that a choice
+      // and its probability agree to the last bit (as EmitterTable's do).
+      lights_[i].cdf = cdf;
+      lights_[i].probability = cdf - previous;
+      previous = cdf;
+    }
+    scene_ = &scene;
+  }
+
+  /// Whether the scene has a light with power: without one, no light path carries anything.
+  bool empty() const {
+    for (const Entry& light : lights_)
+      if (light.probability > 0.0f) return false;
+    return true;
+  }
+
+  /// Whether light paths carry all of the scene's light: its background is black.
+  static bool supports(const Scene& scene) {
+    const Color background = scene.background();
+    return background.r == 0.0f && background.g == 0.0f && background.b == 0.0f;
+  }
+
+  /// A light chosen by `u_choice` in proportion to power, and a point on it: uniformly on an
+  /// emissive sphere's area by `u_point` (unused for a point light). Requires !empty().
+  LightOrigin sample_origin(float u_choice, Vec2 u_point) const {
+    std::size_t index = 0;
+    while (index + 1 < lights_.size() && !(u_choice < lights_[index].cdf))
+      ++index;
+    const Entry& light = lights_[index];
+    if (light.kind == Kind::point) {
+      const PointLight& point = scene_->lights()[light.index];
+      return {point.position, Vec3(0.0f), kNoSphere,
+              (point.intensity * point.color) / light.probability};
+    }
+    const SphereEmitter& e = scene_->emitters()[light.index];
+    const Vec3 normal = sample_uniform_sphere(u_point);
+    return {e.center + e.radius * normal, normal, e.sphere,
+            e.radiance * (e.area() / light.probability)};
+  }
+
+  /// A direction for the light leaving `origin`, by `u`: uniform over the sphere of directions
+  /// from a point light; from a sphere, one side chosen with probability 1/2, then a direction
+  /// distributed as the cosine about that side's normal.
+  static LightRay sample_ray(const LightOrigin& origin, Vec2 u) {
+    if (origin.is_point_light()) {
+      Ray ray;
+      ray.origin = origin.point;
+      ray.direction = sample_uniform_sphere(u);
+      return {ray, origin.weight * (4.0f * kPi)};
+    }
+    const bool outwards = u.x < 0.5f;
+    const Vec2 u_side(outwards ? 2.0f * u.x : 2.0f * u.x - 1.0f, u.y);
+    const Vec3 side = outwards ? origin.normal : -origin.normal;
+    const Vec3 direction =
+        BasicFrame<Vec3>::around(side).to_world(sample_cosine_hemisphere(u_side));
+    // Radiance x cos over (cos / pi x 1/2): the cosine cancels.
+    return {ray_leaving_sphere(origin.point, direction, origin.sphere, !outwards),
+            origin.weight * (2.0f * kPi)};
+  }
+
+ private:
+  enum class Kind : std::uint8_t { point, sphere };
+  struct Entry {
+    Kind kind;
+    std::uint32_t index;  ///< in the scene's point lights or its emitters
+    float cdf = 0.0f;
+    float probability = 0.0f;
+  };
+
+  static double mean(const Color& c) { return (double(c.r) + double(c.g) + double(c.b)) / 3.0; }
+  void add(Kind kind, std::uint32_t index, double power, std::vector<double>& powers) {
+    lights_.push_back({kind, index});
+    powers.push_back(power);
+  }
+
+  const Scene* scene_ = nullptr;
+  std::vector<Entry> lights_;
+};
+
+}  // namespace glint::inline GLINT_ISA_NAMESPACE
