@@ -10,7 +10,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -32,6 +31,10 @@ namespace light_tracing_test {
 using Chain = glint::variants::report::with_material_model<glint::StochasticMaterialModel>;
 template <typename C>
 using LightTracing = glint::Renderer<C, glint::LightTracingExecution<C>>;
+/// The path tracer the light tracer is compared with: Chain's image, with less noise per sample
+/// (cosine bounces, emitter sampling with MIS).
+using PathReference = Chain::with_diffuse_sampling<glint::CosineHemisphere>::with_light_sampling<
+    glint::EmitterSampling<glint::PowerHeuristic>>;
 
 glint::Scene build(const std::string& text, const char* label) {
   return glint::Scene::build(glint::read_scene_text(text, label));
@@ -41,7 +44,7 @@ glint::Scene build(const std::string& text, const char* label) {
 // small one it does, with diffuse balls (one patterned): everything the camera sees is diffuse
 // or a lamp, so light tracing sees all the light the path tracer does.
 constexpr const char* kRoom = R"(
-image     width=16 height=16 spp=16 max_depth=3
+image     width=16 height=16 spp=64 max_depth=3
 camera    position=0,0,30 look_at=0,-4,0 up=0,1,0 fov=50
 antialias sigma=0.5
 sphere    center=-100016,0,0 radius=1e5 color=0.8,0.3,0.3
@@ -73,7 +76,8 @@ sphere    center=0,0,-100020 radius=1e5 color=0.7,0.7,0.7
 sphere    center=0,0,100020 radius=1e5 color=0.7,0.7,0.7
 )";
 
-TEST_CASE("light tracing: the same bits for any threads, tiles and passes", "[render][light]") {
+TEST_CASE("light tracing: the same bits for any threads, tiles and passes, and after a resume",
+          "[render][light]") {
   const glint::Scene scene = build(R"(
 image     width=23 height=17 spp=5 max_depth=4
 camera    position=0,0,20 look_at=0,0,0 up=0,1,0 fov=50
@@ -104,6 +108,22 @@ sphere    center=0,6,-4 radius=1 diffuse=0 emission=5,5,5
   CHECK(total > 0.0);
   for (std::size_t i = 1; i < films.size(); ++i)
     CHECK(films[i].pixels() == films[0].pixels());
+
+  // Stopped after two passes of one sample, its sums (splats included) kept, and resumed from
+  // them on another thread count: the uninterrupted render's bits.
+  settings.max_pass_samples = 1;
+  settings.threads = 2;
+  glint::RenderControl stop_early;
+  stop_early.keep_sums = true;
+  stop_early.pass_done = [](const glint::PassReport& report) { return report.passes_done < 2; };
+  const glint::RenderResult first = LightTracing<Chain>::render(scene, settings, stop_early);
+  REQUIRE(first.passes_done == 2);
+  REQUIRE(first.sums.has_splats());
+  settings.threads = 3;
+  const glint::RenderResult resumed = LightTracing<Chain>::render(
+      scene, settings, {}, glint::RenderStart{&first.sums, first.passes_done});
+  REQUIRE(resumed.complete());
+  CHECK(resumed.film.pixels() == films[0].pixels());
 }
 
 TEST_CASE("light tracing: agrees with the path tracer where the camera sees diffuse surfaces",
@@ -112,12 +132,12 @@ TEST_CASE("light tracing: agrees with the path tracer where the camera sees diff
   for (const auto& [text, name] : {std::pair{kRoom, "room"}, {kInsideGlass, "inside glass"}}) {
     const glint::Scene scene = build(text, name);
     const glint::RenderSettings settings = glint::RenderSettings::from(scene);
-    // The scenes' samples per pixel are light tracing's; the path tracer needs fewer.
+    // The scenes' samples per pixel are light tracing's.
     glint::RenderSettings path_settings = settings;
-    path_settings.samples_per_pixel = 16;
+    path_settings.samples_per_pixel = 64;
     const double lit = glint_test::compare_independent(
         family, std::string(name) + ", light tracing against path tracing",
-        glint_test::render_blocks<glint::Renderer<Chain>>(scene, 100, path_settings),
+        glint_test::render_blocks<glint::Renderer<PathReference>>(scene, 100, path_settings),
         glint_test::render_blocks<LightTracing<Chain>>(scene, 200, settings));
     CHECK(lit > 0.01);
   }

@@ -44,39 +44,27 @@ struct LightRay {
 /// The scene's lights as light paths see them.
 class LightEmission {
  public:
-  explicit LightEmission(const Scene& scene) {
+  explicit LightEmission(const Scene& scene) : scene_(&scene) {
     std::vector<double> power;
     for (std::uint32_t i = 0; i < scene.lights().size(); ++i) {
       const PointLight& light = scene.lights()[i];
-      add(Kind::point, i, 4.0 * double(kPi) * double(light.intensity) * mean(light.color), power);
+      lights_.push_back({Kind::point, i});
+      power.push_back(4.0 * double(kPi) * double(light.intensity) * channel_mean(light.color));
     }
     for (std::uint32_t i = 0; i < scene.emitters().size(); ++i) {
       const SphereEmitter& e = scene.emitters()[i];
-      add(Kind::sphere, i, 2.0 * double(kPi) * double(e.area()) * mean(e.radiance), power);
+      lights_.push_back({Kind::sphere, i});
+      power.push_back(2.0 * double(kPi) * double(e.area()) * channel_mean(e.radiance));
     }
     double total = 0.0;
     for (const double p : power)
       total += p;
-    double sum = 0.0;
-    float previous = 0.0f;
-    for (std::size_t i = 0; i < lights_.size(); ++i) {
-      sum += power[i];
-      const float cdf = i + 1 == lights_.size() ? 1.0f : float(total > 0.0 ? sum / total : 0.0);
-      // The probability is the width of the choice's step of the cdf as stored, so that a choice
-      // and its probability agree to the last bit (as EmitterTable's do).
-      lights_[i].cdf = cdf;
-      lights_[i].probability = cdf - previous;
-      previous = cdf;
-    }
-    scene_ = &scene;
+    empty_ = !(total > 0.0);
+    cumulative_choice(power, cdf_, probability_);
   }
 
-  /// Whether the scene has a light with power: without one, no light path carries anything.
-  bool empty() const {
-    for (const Entry& light : lights_)
-      if (light.probability > 0.0f) return false;
-    return true;
-  }
+  /// Whether the scene has no light with power: then no light path carries anything.
+  bool empty() const { return empty_; }
 
   /// Whether light paths carry all of the scene's light: its background is black.
   static bool supports(const Scene& scene) {
@@ -87,19 +75,16 @@ class LightEmission {
   /// A light chosen by `u_choice` in proportion to power, and a point on it: uniformly on an
   /// emissive sphere's area by `u_point` (unused for a point light). Requires !empty().
   LightOrigin sample_origin(float u_choice, Vec2 u_point) const {
-    std::size_t index = 0;
-    while (index + 1 < lights_.size() && !(u_choice < lights_[index].cdf))
-      ++index;
+    const std::size_t index = choice_of(cdf_, u_choice);
     const Entry& light = lights_[index];
+    const float probability = probability_[index];
     if (light.kind == Kind::point) {
       const PointLight& point = scene_->lights()[light.index];
-      return {point.position, Vec3(0.0f), kNoSphere,
-              (point.intensity * point.color) / light.probability};
+      return {point.position, Vec3(0.0f), kNoSphere, (point.intensity * point.color) / probability};
     }
     const SphereEmitter& e = scene_->emitters()[light.index];
     const Vec3 normal = sample_uniform_sphere(u_point);
-    return {e.center + e.radius * normal, normal, e.sphere,
-            e.radiance * (e.area() / light.probability)};
+    return {e.center + e.radius * normal, normal, e.sphere, e.radiance * (e.area() / probability)};
   }
 
   /// A direction for the light leaving `origin`, by `u`: uniform over the sphere of directions
@@ -127,18 +112,13 @@ class LightEmission {
   struct Entry {
     Kind kind;
     std::uint32_t index;  ///< in the scene's point lights or its emitters
-    float cdf = 0.0f;
-    float probability = 0.0f;
   };
 
-  static double mean(const Color& c) { return (double(c.r) + double(c.g) + double(c.b)) / 3.0; }
-  void add(Kind kind, std::uint32_t index, double power, std::vector<double>& powers) {
-    lights_.push_back({kind, index});
-    powers.push_back(power);
-  }
-
-  const Scene* scene_ = nullptr;
+  const Scene* scene_;
   std::vector<Entry> lights_;
+  std::vector<float> cdf_;  ///< of the choice by power (cumulative_choice)
+  std::vector<float> probability_;
+  bool empty_ = true;
 };
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE

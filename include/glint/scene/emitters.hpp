@@ -124,6 +124,40 @@ EmitterViews<FloatOf<V3>> emitter_views(const V3& center, FloatOf<V3> radius,
   return {!on_emitter && dot(offset, offset) > radius * radius, on_emitter && !from_inside};
 }
 
+/// The mean of a colour's channels, in double: the power of a colour, as the choices by power
+/// weigh it.
+inline double channel_mean(const Color& c) {
+  return (double(c.r) + double(c.g) + double(c.b)) / 3.0;
+}
+
+/// The cumulative probabilities `cdf` (the last exactly 1) and the probabilities `probability`
+/// of choosing item i with probability weights[i] / sum of weights (the last item, if they sum to
+/// zero). A probability is exactly the width of its step of the cdf
+/// as stored in float, so that a choice and its probability agree to the last bit.
+inline void cumulative_choice(const std::vector<double>& weights, std::vector<float>& cdf,
+                              std::vector<float>& probability) {
+  double total = 0.0;
+  for (const double w : weights)
+    total += w;
+  cdf.resize(weights.size());
+  probability.resize(weights.size());
+  double sum = 0.0;
+  float previous = 0.0f;
+  for (std::size_t i = 0; i < weights.size(); ++i) {
+    sum += weights[i];
+    cdf[i] = i + 1 == weights.size() ? 1.0f : float(total > 0.0 ? sum / total : 0.0);
+    probability[i] = cdf[i] - previous;
+    previous = cdf[i];
+  }
+}
+
+/// The index of the choice for a uniform number u in [0, 1) by a cdf of cumulative_choice: the
+/// number of cumulative probabilities that u is not below, at most the last index.
+inline std::size_t choice_of(const std::vector<float>& cdf, float u) {
+  const auto at = std::size_t(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin());
+  return at < cdf.size() ? at : cdf.size() - 1;
+}
+
 /// An emissive sphere. Its radiance leaves both sides of the surface, as every sphere's does.
 struct SphereEmitter {
   Vec3 center;
@@ -185,26 +219,10 @@ class EmitterTable {
 
   /// Chooses in proportion to power: area times the mean of the radiance's channels.
   explicit EmitterTable(std::vector<SphereEmitter> emitters) : emitters_(std::move(emitters)) {
-    std::vector<double> power(emitters_.size());
-    double total = 0.0;
-    for (std::size_t i = 0; i < emitters_.size(); ++i) {
-      const SphereEmitter& e = emitters_[i];
-      const double mean = (double(e.radiance.r) + e.radiance.g + e.radiance.b) / 3.0;
-      power[i] = double(e.radius) * e.radius * mean;
-      total += power[i];
-    }
-    cdf_.resize(emitters_.size());
-    probability_.resize(emitters_.size());
-    double sum = 0.0;
-    float previous = 0.0f;
-    for (std::size_t i = 0; i < emitters_.size(); ++i) {
-      sum += power[i];
-      cdf_[i] = i + 1 == emitters_.size() ? 1.0f : float(total > 0.0 ? sum / total : 0.0);
-      // The probability of a choice is exactly the width of its step of the cdf as stored,
-      // so that choose() and probability() agree to the last bit.
-      probability_[i] = cdf_[i] - previous;
-      previous = cdf_[i];
-    }
+    std::vector<double> power;
+    for (const SphereEmitter& e : emitters_)
+      power.push_back(double(e.radius) * e.radius * channel_mean(e.radiance));
+    cumulative_choice(power, cdf_, probability_);
   }
 
   bool empty() const { return emitters_.empty(); }
@@ -285,10 +303,8 @@ class EmitterTable {
           index -= ~(u < step);  // a comparison is -1 where true: this adds 1 where false
       }
     } else {
-      for (int i = 0; i < kLanesOf<F>; ++i) {
-        const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), lane(u, i));
-        set_lane(index, i, std::int32_t(it - cdf_.begin()));
-      }
+      for (int i = 0; i < kLanesOf<F>; ++i)
+        set_lane(index, i, std::int32_t(choice_of(cdf_, lane(u, i))));
     }
     return select(index > last, splat<I>(last), index);
   }

@@ -59,21 +59,19 @@ class LightTracer {
     // The vertices a path may have between the light and the camera (see above).
     const int most_vertices = origin.is_point_light() ? max_depth_ + 1 : max_depth_;
 
-    if (!origin.is_point_light()) {
-      // The emissive sphere seen by the camera: its radiance from the point, both sides.
-      if (const std::optional<CameraConnection> to_camera = camera_.connect(origin.point)) {
-        const float cosine = std::fabs(glm::dot(to_camera->direction, origin.normal));
-        const Ray shadow = ray_leaving_sphere(origin.point, to_camera->direction, origin.sphere,
-                                              origin.normal, to_camera->unclipped_distance);
-        ++counters.rays;
-        if (cosine > 0.0f && !scene_.occluded(shadow))
-          splat(to_camera->film, origin.weight * (cosine * to_camera->importance));
-      }
-    }
+    // The emissive sphere seen by the camera: its radiance from the point, on both sides.
+    if (!origin.is_point_light())
+      connect(
+          origin.point, origin.sphere, origin.normal,
+          [&](const Vec3& to_camera) {
+            return origin.weight * std::fabs(glm::dot(to_camera, origin.normal));
+          },
+          splat, counters);
 
     Ray ray = emitted.ray;
     Color weight = emitted.weight;
     const float start = max_component(weight);
+    if (!(start > 0.0f)) return;
     for (int vertex = 1; vertex <= most_vertices; ++vertex) {
       ++counters.rays;
       const std::optional<SphereHit> hit = scene_.closest_hit(ray);
@@ -81,7 +79,12 @@ class LightTracer {
       const SurfaceInteraction it =
           SurfaceInteraction::at_hit(scene_, ray.origin, ray.direction, hit->t, hit->sphere, true);
       const ReportMaterial<C> material(it, ray.direction);
-      if (material.has_lobe(Lobe::diffuse)) connect(it, material, weight, splat, counters);
+      if (material.has_lobe(Lobe::diffuse))
+        connect(
+            it.point, it.sphere, it.outward_normal,
+            // f cos at the vertex: zero where the camera is on the other side of the surface.
+            [&](const Vec3& to_camera) { return weight * material.evaluate(to_camera); }, splat,
+            counters);
       if (vertex == most_vertices || !material.scatters()) return;
       // Roulette on the weight relative to the light's, which is what a camera path's
       // throughput of one means here.
@@ -100,20 +103,21 @@ class LightTracer {
   }
 
  private:
-  /// The connection of a diffuse vertex, reached with `weight`, to the camera.
-  template <typename Splat>
-  void connect(const SurfaceInteraction& it, const ReportMaterial<C>& material, const Color& weight,
+  /// Connects `point`, on sphere `sphere` of outward normal `normal` there, to the camera:
+  /// where the camera sees it and nothing blocks the way, splats light(direction to the camera)
+  /// times the camera's importance. A connection that brings nothing traces no ray.
+  template <typename Light, typename Splat>
+  void connect(const Vec3& point, std::uint32_t sphere, const Vec3& normal, Light&& light,
                Splat& splat, TraceCounters& counters) const {
-    const std::optional<CameraConnection> to_camera = camera_.connect(it.point);
+    const std::optional<CameraConnection> to_camera = camera_.connect(point);
     if (!to_camera) return;
-    // f cos at the vertex; zero where the camera is on the other side of the surface.
-    const Color reflected = material.evaluate(to_camera->direction);
-    if (reflected.r == 0.0f && reflected.g == 0.0f && reflected.b == 0.0f) return;
+    const Color value = light(to_camera->direction);
+    if (value == Color(0.0f)) return;
     ++counters.rays;
-    const Ray shadow = ray_leaving_sphere(it.point, to_camera->direction, it.sphere,
-                                          it.outward_normal, to_camera->unclipped_distance);
-    if (scene_.occluded(shadow)) return;
-    splat(to_camera->film, weight * reflected * to_camera->importance);
+    if (scene_.occluded(ray_leaving_sphere(point, to_camera->direction, sphere, normal,
+                                           to_camera->unclipped_distance)))
+      return;
+    splat(to_camera->film, value * to_camera->importance);
   }
 
   const Scene& scene_;
