@@ -39,7 +39,7 @@ using glint::cli::Variant;
 constexpr glint::cli::Program kProgram{
     GLINT_PROGRAM_NAME,
     "",
-    "Renders SCENE (a glint scene file) with the path tracer and writes an image.",
+    glint::cli::kVariantDescription,
     R"(  --threads N         worker threads (default: one per hardware thread); the image does
                       not depend on it
 )",
@@ -146,7 +146,9 @@ int run(int argc, char** argv) {
     const glint::RenderControl control{cli::ProgressPrinter(!options.quiet), keeper.callback(),
                                        &cli::stop_requested, options.checkpoint.has_value()};
     glint::RenderResult result = cli::with_memory_for(
-        [&] { return cli::image_memory(settings, options.resume.has_value()); },
+        [&] {
+          return cli::image_memory(settings, options.resume.has_value(), cli::kVariantSplats);
+        },
         [&] {
           return cli::with_renderer<Variant>(
               cli::execution_model(program, options), [&]<typename Renderer>() {

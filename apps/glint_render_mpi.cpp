@@ -269,7 +269,10 @@ int render(const mpi::World& world, const cli::Options& options, const MpiOption
   if (int status =
           mpi::agree(world, mpi::attempt(kProgram, [&] {
                        cli::with_memory_for(
-                           [&] { return cli::image_memory(settings, options.resume.has_value()); },
+                           [&] {
+                             return cli::image_memory(settings, options.resume.has_value(),
+                                                      cli::kVariantSplats);
+                           },
                            [&] { sums.emplace(settings.width, settings.height); });
                        if (world.rank == 0) {
                          keeper.emplace(kProgram, options, settings, loaded.hash);

@@ -36,14 +36,17 @@ decltype(auto) with_memory_for(const What& what, Step&& step) {
 }
 
 /// What a render of `settings` holds for its image: 24 bytes a pixel of sums (double), 12 of
-/// film, and 24 more of a resumed checkpoint's sums.
-inline std::string image_memory(const glint::RenderSettings& settings, bool resumed) {
+/// film, 48 of splat sums where the renderer splats, and as much again for the sums of a resumed
+/// checkpoint.
+inline std::string image_memory(const glint::RenderSettings& settings, bool resumed, bool splats) {
   const double pixels = double(settings.width) * double(settings.height);
-  const int per_pixel = 24 + 12 + (resumed ? 24 : 0);
+  const int sums = 24 + (splats ? 48 : 0);
+  const int per_pixel = sums + 12 + (resumed ? sums : 0);
   return "for the image of " + std::to_string(settings.width) + "x" +
          std::to_string(settings.height) + " pixels: rendering it needs about " +
          byte_size(pixels * per_pixel) + " (" + std::to_string(per_pixel) +
-         " bytes a pixel: its sums, its film" + (resumed ? ", the checkpoint's sums" : "") + ")";
+         " bytes a pixel: its sums" + (splats ? " and splats" : "") + ", its film" +
+         (resumed ? ", the checkpoint's sums" : "") + ")";
 }
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE::cli

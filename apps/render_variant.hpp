@@ -6,6 +6,7 @@
 // each), and with it the CPU check (cpu_check.hpp), which runs before main.
 
 #include <span>
+#include <string_view>
 
 #include "cpu_check.hpp"
 #include "glint/instruction_set.hpp"
@@ -28,6 +29,17 @@ static_assert(glint::NamedVariant<Variant>, "GLINT_VARIANT must name a variant o
 
 /// Whether this program's variant has the wavefront renderer (Program::has_wavefront).
 inline constexpr bool kVariantHasWavefront = glint::WavefrontConfig<Variant>;
+
+/// Whether its renderer splats (light tracing): its sums carry a splat layer.
+inline constexpr bool kVariantSplats =
+    glint::kExecutionSplats<typename glint::Renderer<Variant>::ExecutionModel>;
+
+/// What the program does, as the first line of its help says it (Program::description).
+inline constexpr std::string_view kVariantDescription =
+    glint::kFollowsCameraPaths<typename Variant::estimator>
+        ? "Renders SCENE (a glint scene file) with the path tracer and writes an image."
+        : "Renders SCENE (a glint scene file) by light tracing (paths from the lights, connected "
+          "to the camera) and writes an image.";
 
 /// The paths its wavefront renderer shades at once (Program::wavefront_lanes).
 inline constexpr int kVariantWavefrontLanes = [] {

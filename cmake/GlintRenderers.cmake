@@ -47,10 +47,10 @@ foreach(variant IN LISTS GLINT_BUILT_VARIANTS)
     list(APPEND models wavefront)
   endif()
   foreach(model IN LISTS models)
-    # The classes whose out-of-class members hold the renderer's work: Renderer::render and
-    # render_tiles, and for the scalar model ScalarExecution::render_pixel.
+    # The classes that hold the renderer's work: Renderer::render and render_tiles, and for the
+    # scalar model its execution (ScalarExecution::render_pixel is out of the class).
     if(model STREQUAL scalar)
-      set(classes "glint::ScalarExecution<${type}>" "glint::Renderer<${type}>")
+      set(classes "${GLINT_EXECUTION_${variant}}<${type}>" "glint::Renderer<${type}>")
     else()
       set(classes "glint::Renderer<${type}, glint::WavefrontExecution<${type}>>")
     endif()

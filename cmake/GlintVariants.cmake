@@ -3,6 +3,7 @@
 #   GLINT_VARIANTS         the variant names, in the order of glint::variants::all
 #   GLINT_DEFAULT_VARIANT  the variant glint-render (without a suffix) is built with
 #   GLINT_WAVEFRONT_VARIANTS  the variants that also have the wavefront renderer
+#   GLINT_EXECUTION_<name>    the class template of variant <name>'s Renderer execution model
 # and writes ${PROJECT_BINARY_DIR}/variants.tsv (the program's output) for bench/run-all.
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
   ${PROJECT_SOURCE_DIR}/include/glint/variants.hpp ${PROJECT_SOURCE_DIR}/cmake/list_variants.cpp)
@@ -27,7 +28,9 @@ foreach(line IN LISTS glint_variant_lines)
     list(APPEND GLINT_VARIANTS ${CMAKE_MATCH_1})
   elseif(line MATCHES "^default\t([a-z0-9_]+)$")
     set(GLINT_DEFAULT_VARIANT ${CMAKE_MATCH_1})
-  elseif(line MATCHES "^renderer\t([a-z0-9_]+)\twavefront$")
+  elseif(line MATCHES "^renderer\t([a-z0-9_]+)\tscalar\t([A-Za-z:]+)$")
+    set(GLINT_EXECUTION_${CMAKE_MATCH_1} ${CMAKE_MATCH_2})
+  elseif(line MATCHES "^renderer\t([a-z0-9_]+)\twavefront\t")
     list(APPEND GLINT_WAVEFRONT_VARIANTS ${CMAKE_MATCH_1})
   endif()
 endforeach()

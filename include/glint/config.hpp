@@ -10,9 +10,9 @@
 #include "glint/policy/antialiasing.hpp"
 #include "glint/policy/concepts.hpp"
 #include "glint/policy/diffuse_sampling.hpp"
+#include "glint/policy/estimator.hpp"
 #include "glint/policy/fresnel.hpp"
 #include "glint/policy/light_sampling.hpp"
-#include "glint/policy/material_model.hpp"
 #include "glint/policy/path_termination.hpp"
 #include "glint/policy/sampler.hpp"
 #include "glint/policy/sphere_shading.hpp"
@@ -20,8 +20,9 @@
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// - SamplerPolicy: where sample values come from (independent, stratified, Sobol').
-/// - MaterialModelPolicy: which lobes of the report's material a path follows at a hit (all
-///   of them, a tree of rays; or one chosen at random, a chain).
+/// - EstimatorPolicy: which paths estimate the image: camera paths that follow every lobe of
+///   the report's material at a hit (a tree of rays) or one chosen at random (a chain), or
+///   paths from the lights connected to the camera.
 /// - FresnelPolicy: reflectance of fully transparent spheres (none, Schlick, exact).
 /// - AntialiasingPolicy: where in the pixel a camera ray goes (centre, Gaussian, box, tent).
 /// - SphereShadingPolicy: which shading kinds (uniform, octants, checker, custom) the build
@@ -30,14 +31,14 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 /// - PathTerminationPolicy: when a path ends (at the maximum depth, or by Russian roulette).
 /// - LightSamplingPolicy: whether diffuse hits also sample emissive spheres, and how that is
 ///   weighted against bounces that hit them (multiple importance sampling).
-template <Sampler SamplerPolicy, MaterialModel MaterialModelPolicy, Fresnel FresnelPolicy,
+template <Sampler SamplerPolicy, Estimator EstimatorPolicy, Fresnel FresnelPolicy,
           Antialiasing AntialiasingPolicy, SphereShading SphereShadingPolicy,
           DiffuseSampling DiffuseSamplingPolicy = UniformHemisphere,
           PathTermination PathTerminationPolicy = FixedDepth,
           LightSampling LightSamplingPolicy = PointLightsOnly>
 struct Config {
   using sampler = SamplerPolicy;
-  using material_model = MaterialModelPolicy;
+  using estimator = EstimatorPolicy;
   using fresnel = FresnelPolicy;
   using antialiasing = AntialiasingPolicy;
   using sphere_shading = SphereShadingPolicy;
@@ -46,28 +47,28 @@ struct Config {
   using light_sampling = LightSamplingPolicy;
 
   template <Sampler P>
-  using with_sampler = Config<P, material_model, fresnel, antialiasing, sphere_shading,
-                              diffuse_sampling, path_termination, light_sampling>;
-  template <MaterialModel P>
-  using with_material_model = Config<sampler, P, fresnel, antialiasing, sphere_shading,
-                                     diffuse_sampling, path_termination, light_sampling>;
+  using with_sampler = Config<P, estimator, fresnel, antialiasing, sphere_shading, diffuse_sampling,
+                              path_termination, light_sampling>;
+  template <Estimator P>
+  using with_estimator = Config<sampler, P, fresnel, antialiasing, sphere_shading, diffuse_sampling,
+                                path_termination, light_sampling>;
   template <Fresnel P>
-  using with_fresnel = Config<sampler, material_model, P, antialiasing, sphere_shading,
-                              diffuse_sampling, path_termination, light_sampling>;
+  using with_fresnel = Config<sampler, estimator, P, antialiasing, sphere_shading, diffuse_sampling,
+                              path_termination, light_sampling>;
   template <Antialiasing P>
-  using with_antialiasing = Config<sampler, material_model, fresnel, P, sphere_shading,
-                                   diffuse_sampling, path_termination, light_sampling>;
+  using with_antialiasing = Config<sampler, estimator, fresnel, P, sphere_shading, diffuse_sampling,
+                                   path_termination, light_sampling>;
   template <SphereShading P>
-  using with_sphere_shading = Config<sampler, material_model, fresnel, antialiasing, P,
-                                     diffuse_sampling, path_termination, light_sampling>;
+  using with_sphere_shading = Config<sampler, estimator, fresnel, antialiasing, P, diffuse_sampling,
+                                     path_termination, light_sampling>;
   template <DiffuseSampling P>
-  using with_diffuse_sampling = Config<sampler, material_model, fresnel, antialiasing,
-                                       sphere_shading, P, path_termination, light_sampling>;
+  using with_diffuse_sampling = Config<sampler, estimator, fresnel, antialiasing, sphere_shading, P,
+                                       path_termination, light_sampling>;
   template <PathTermination P>
-  using with_path_termination = Config<sampler, material_model, fresnel, antialiasing,
-                                       sphere_shading, diffuse_sampling, P, light_sampling>;
+  using with_path_termination = Config<sampler, estimator, fresnel, antialiasing, sphere_shading,
+                                       diffuse_sampling, P, light_sampling>;
   template <LightSampling P>
-  using with_light_sampling = Config<sampler, material_model, fresnel, antialiasing, sphere_shading,
+  using with_light_sampling = Config<sampler, estimator, fresnel, antialiasing, sphere_shading,
                                      diffuse_sampling, path_termination, P>;
 };
 

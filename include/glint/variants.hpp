@@ -1,8 +1,9 @@
 #pragma once
 // Named renderer variants: the one list of them. `report` is the report's renderer; every other
-// variant but the two `fast` ones changes exactly one policy from it (an ablation), so comparing
-// it with `report` measures that one feature. `fast` combines the policies that give the best
-// image per second, and `fast_no_emitter_sampling` takes one of them away again.
+// variant but the three built on `fast` changes exactly one policy from it (an ablation), so
+// comparing it with `report` measures that one feature. `fast` combines the policies that give
+// the best image per second; `fast_no_emitter_sampling` takes one of them away again, and
+// `light_tracing` replaces its estimator (camera paths) by paths from the lights.
 //
 // Each variant is a type derived from its Config that carries its name, a line saying what it
 // changes and whether it converges to the report's image (as pbrt-v4's types carry Name()).
@@ -33,15 +34,15 @@ namespace variants {
 inline constexpr bool kSameImage = true;
 inline constexpr bool kDifferentImage = false;
 
-struct report : Config<IndependentSampler, ReportMaterialModel, ExactFresnel, GaussianAntialiasing,
+struct report : Config<IndependentSampler, TreePathTracing, ExactFresnel, GaussianAntialiasing,
                        BuiltinShading, UniformHemisphere, FixedDepth> {
   static constexpr VariantInfo info{"report", "the report's renderer (baseline)", kSameImage};
 };
 
 // The best image per second measured by bench/run-all (bench/results/variants.md).
 struct fast
-    : Config<HybridSobolSampler<6>, StochasticMaterialModel, ExactFresnel, GaussianAntialiasing,
-             BuiltinShading, CosineHemisphere, RussianRoulette, EmitterSampling<PowerHeuristic>> {
+    : Config<HybridSobolSampler<6>, PathTracing, ExactFresnel, GaussianAntialiasing, BuiltinShading,
+             CosineHemisphere, RussianRoulette, EmitterSampling<PowerHeuristic>> {
   static constexpr VariantInfo info{"fast",
                                     "Sobol' for the first 6 requests, one lobe per bounce, cosine "
                                     "bounces, Russian roulette, emitter sampling with MIS",
@@ -71,7 +72,7 @@ struct cosine_hemisphere : report::with_diffuse_sampling<CosineHemisphere> {
   static constexpr VariantInfo info{"cosine_hemisphere", "cosine-weighted diffuse bounces",
                                     kSameImage};
 };
-struct stochastic_material : report::with_material_model<StochasticMaterialModel> {
+struct stochastic_material : report::with_estimator<PathTracing> {
   static constexpr VariantInfo info{
       "stochastic_material", "one material lobe per bounce, chosen by coefficient", kSameImage};
 };
@@ -96,6 +97,16 @@ struct fast_no_emitter_sampling : fast::with_light_sampling<PointLightsOnly> {
   static constexpr VariantInfo info{
       "fast_no_emitter_sampling", "`fast` with emissive spheres found by bounces only", kSameImage};
 };
+/// The estimator that finds a point light's light through glass: `fast`'s policies, followed
+/// from the lights instead of from the camera. It sees no mirror or glass from the camera and
+/// no background, so it renders another image than `report` wherever those show.
+struct light_tracing : fast::with_estimator<LightTracing> {
+  static constexpr VariantInfo info{
+      "light_tracing",
+      "`fast` followed from the lights: caustics of point lights; no background, nothing seen "
+      "through glass or in a mirror",
+      kDifferentImage};
+};
 struct emitter_sampling : report::with_light_sampling<EmitterSampling<PowerHeuristic>> {
   static constexpr VariantInfo info{
       "emitter_sampling", "emissive spheres sampled at diffuse hits, MIS with the power heuristic",
@@ -106,7 +117,7 @@ struct emitter_sampling : report::with_light_sampling<EmitterSampling<PowerHeuri
 using all = std::tuple<report, fast, no_fresnel, schlick_fresnel, no_antialiasing, box_antialiasing,
                        tent_antialiasing, cosine_hemisphere, stochastic_material, russian_roulette,
                        uniform_shading, stratified_sampler, sobol_sampler, emitter_sampling,
-                       fast_no_emitter_sampling>;
+                       fast_no_emitter_sampling, light_tracing>;
 
 /// The variant glint-render (without a suffix) is built with.
 using default_variant = fast;

@@ -2,8 +2,9 @@
 # the tables show them, read from the variants.tsv that configuring glint writes
 # (cmake/GlintVariants.cmake runs cmake/list_variants.cpp over include/glint/variants.hpp).
 # Its lines are "variant<TAB>NAME<TAB>same|different<TAB>DESCRIPTION", in the order of
-# glint::variants::all, then "default<TAB>NAME", then "renderer<TAB>NAME<TAB>scalar|wavefront"
-# for each execution model a variant renders with.
+# glint::variants::all, then "default<TAB>NAME", then
+# "renderer<TAB>NAME<TAB>scalar|wavefront<TAB>CLASS" for each execution model a variant renders
+# with (CLASS: the C++ class template of that execution model).
 
 # glint_variants_check TSV: fails, saying why, unless TSV is such a file with `report` first.
 glint_variants_check() {
@@ -16,7 +17,7 @@ glint_variants_check() {
     $1 == "variant" && NF == 4 && $2 ~ /^[a-z0-9_]+$/ && ($3 == "same" || $3 == "different") &&
       $4 != "" { if (++variants == 1) first = $2; next }
     $1 == "default" && NF == 2 { defaults++; next }
-    $1 == "renderer" && NF == 3 && ($3 == "scalar" || $3 == "wavefront") { next }
+    $1 == "renderer" && NF == 4 && ($3 == "scalar" || $3 == "wavefront") && $4 ~ /^glint::[A-Za-z]+$/ { next }
     { printf "%s:%d: not a variant line: %s\n", FILENAME, FNR, $0 > "/dev/stderr"; bad = 1 }
     END {
       if (bad) exit 1

@@ -303,6 +303,34 @@ if(GLINT_BASH)
   endforeach()
 endif()
 
+# Light tracing (glint-render-light-tracing): a scene with a background is one it cannot render
+# (status 3, naming the line), a pixel filter without an area a setting it cannot use; its splats
+# go into checkpoints, and a render stopped and resumed gives the uninterrupted bytes.
+if(TARGET glint-render-light-tracing)
+  glint_cli_test(light-tracing-background PROGRAM glint-render-light-tracing STATUS 3
+                 STDERR "sky.scene:4: .*light tracing needs a black background"
+                 ARGS ${glint_cli_scenes}/sky.scene -o out.png)
+  glint_cli_test(light-tracing-pixel-centres PROGRAM glint-render-light-tracing STATUS 1
+                 STDERR "light tracing needs a pixel filter with an area"
+                 ARGS ${glint_cli_scenes}/pixel-centres.scene -o out.png)
+  glint_cli_test(light-tracing-help PROGRAM glint-render-light-tracing STATUS 0
+                 STDOUT "by light tracing" ARGS --help)
+  if(GLINT_BASH)
+    foreach(case checkpoint_resume checkpoint_after_kill)
+      string(REPLACE "_" "-" name ${case})
+      add_test(NAME "cli: light-tracing-${name}"
+               COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash ${case}
+                       $<TARGET_FILE:glint-render-light-tracing> ${glint_cli_scenes}/tiny.scene
+                       ${PROJECT_BINARY_DIR}/cli-test/light-tracing-${name})
+      set_tests_properties("cli: light-tracing-${name}" PROPERTIES LABELS "cli;long")
+      if(GLINT_SANITIZE)
+        set_tests_properties("cli: light-tracing-${name}" PROPERTIES
+                             ENVIRONMENT GLINT_LONG_RENDER_SIZE=160x120)
+      endif()
+    endforeach()
+  endif()
+endif()
+
 # The execution model (tests/cli/execution_model_test.bash): --scalar renders a finite image of
 # the right size; the default and --scalar agree statistically; a checkpoint of either model
 # resumes with either to the uninterrupted bytes; a variant without the wavefront renderer

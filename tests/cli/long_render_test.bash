@@ -425,9 +425,10 @@ case_checkpoint_resume() {
   wait "$pid"
   local status=$?
   ((status == 130)) || fail "exit status $status, expected 130"
-  grep -q "^glint-render: ck\.glint holds the render so far: continue it with --resume ck\.glint$" \
+  # PROGRAM may be a variant's glint-render-VARIANT, which says its own name.
+  grep -Eq "^glint-render(-[a-z-]+)?: ck\.glint holds the render so far: continue it with --resume ck\.glint$" \
     err.log || fail "no message about the checkpoint"
-  [[ $(tail -n 1 err.log) == "glint-render: stopped by SIGINT: out.png holds "* ]] ||
+  [[ $(tail -n 1 err.log) =~ ^glint-render(-[a-z-]+)?": stopped by SIGINT: out.png holds " ]] ||
     fail "the stop message is not the last line"
   [[ -f ck.glint ]] || fail "no checkpoint written"
   complete_png out.png

@@ -2,7 +2,7 @@
 // names the violated concept.
 #include "glint/config.hpp"
 
-using broken = glint::Config<glint::IndependentSampler, glint::ReportMaterialModel, int,
+using broken = glint::Config<glint::IndependentSampler, glint::TreePathTracing, int,
                              glint::GaussianAntialiasing, glint::BuiltinShading>;
 broken::fresnel* use = nullptr;
 int main() {}

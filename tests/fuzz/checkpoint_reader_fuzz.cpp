@@ -25,6 +25,9 @@ void decode(const std::vector<char>& bytes) {
     // What the reader accepts describes itself consistently.
     if (c.sums.width() != c.key.width || c.sums.height() != c.key.height) std::abort();
     if (c.samples_per_pixel_done > c.key.samples_per_pixel) std::abort();
+    if (c.sums.has_splats() &&
+        (c.sums.splats().width() != c.key.width || c.sums.splats().height() != c.key.height))
+      std::abort();
   } catch (const glint::CheckpointError&) {
   }
 }

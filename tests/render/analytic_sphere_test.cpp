@@ -66,7 +66,7 @@ double mean_radiance(const glint::Scene& scene, int spp, int max_depth, double& 
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("a lit closed diffuse sphere shows rho I / (pi R^2 (1 - rho))",
-                        "[render][analytic]", glint_test::AllRenderers) {
+                        "[render][analytic]", glint_test::CameraPathRenderers) {
   const float radius = 10.0f, albedo = 0.5f, intensity = 400.0f;
   const glint::Scene scene = glint::Scene::build(lit_sphere_interior(radius, albedo, intensity));
 

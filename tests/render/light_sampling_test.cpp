@@ -28,7 +28,7 @@ namespace {
 // The report's tree and the one-lobe chain, with camera rays through pixel centres (each pixel
 // sees one point, which the tests below rely on); fixed depth and uniform hemisphere bounces.
 using Tree = glint::variants::no_antialiasing;
-using Chain = Tree::with_material_model<glint::StochasticMaterialModel>;
+using Chain = Tree::with_estimator<glint::PathTracing>;
 
 template <typename C>
 using PowerMis =
@@ -420,7 +420,7 @@ sphere     center=3,-2,1 radius=5 transparent=1 ior=1.5
                                    "glass furnace");
   int chain_variants = 0, with_roulette = 0;
   glint_test::for_each_compiled_variant([&]<typename V>() {
-    if constexpr (std::is_same_v<typename V::material_model, glint::StochasticMaterialModel>) {
+    if constexpr (std::is_same_v<typename V::estimator, glint::PathTracing>) {
       ++chain_variants;
       if (V::path_termination::uses_roulette) ++with_roulette;
       INFO(V::info.name);

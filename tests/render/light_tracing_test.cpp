@@ -28,7 +28,7 @@ namespace light_tracing_test {
 
 // The report's material, one lobe per vertex, fixed depth: light tracing follows the Config's
 // policies, and the path tracer compared with it is the same Config's chain.
-using Chain = glint::variants::report::with_material_model<glint::StochasticMaterialModel>;
+using Chain = glint::variants::report::with_estimator<glint::PathTracing>;
 template <typename C>
 using LightTracing = glint::Renderer<C, glint::LightTracingExecution<C>>;
 /// The path tracer the light tracer is compared with: Chain's image, with less noise per sample
@@ -151,9 +151,10 @@ TEST_CASE("light tracing: refuses what it cannot render, and checkpoints of its 
   settings.antialias_sigma = 0.0f;
   CHECK_THROWS_AS(LightTracing<Chain>::render(scene, settings), glint::SettingsError);
   settings = glint::RenderSettings::from(scene);
-  CHECK_THROWS_AS(LightTracing<glint::variants::no_antialiasing::with_material_model<
-                      glint::StochasticMaterialModel>>::render(scene, settings),
-                  glint::SettingsError);
+  CHECK_THROWS_AS(
+      LightTracing<glint::variants::no_antialiasing::with_estimator<glint::PathTracing>>::render(
+          scene, settings),
+      glint::SettingsError);
 
   const glint::Scene sky = build(R"(
 camera     position=0,0,10 look_at=0,0,0 up=0,1,0 fov=50
@@ -165,17 +166,73 @@ sphere     center=0,0,0 radius=2
   CHECK_THROWS_AS(LightTracing<Chain>::render(sky, glint::RenderSettings::from(sky)),
                   glint::UnsupportedSceneError);
 
-  // A start from sums without splats, and a checkpoint of sums with them.
+  // A start from sums without splats is refused; sums with splats go through a checkpoint and
+  // back, and the render resumed from them is the uninterrupted one, bit for bit.
   const glint::PixelSums plain(settings.width, settings.height);
   CHECK_THROWS_AS(LightTracing<Chain>::render(scene, settings, {}, glint::RenderStart{&plain, 1}),
                   glint::SettingsError);
-  glint::RenderControl keep;
-  keep.keep_sums = true;
-  const glint::RenderResult result = LightTracing<Chain>::render(scene, settings, keep);
-  REQUIRE(result.sums.has_splats());
-  CHECK_THROWS_AS(glint::encode_checkpoint(glint::CheckpointKey{}, result.passes_done,
-                                           result.samples_per_pixel, result.sums),
-                  glint::Error);
+  settings.samples_per_pixel = 8;
+  glint::RenderControl stop_early;
+  stop_early.keep_sums = true;
+  stop_early.pass_done = [](const glint::PassReport& report) { return report.passes_done < 3; };
+  const glint::RenderResult first = LightTracing<Chain>::render(scene, settings, stop_early);
+  REQUIRE(first.passes_done == 3);
+  REQUIRE(first.sums.has_splats());
+  const glint::Checkpoint back = glint::decode_checkpoint(
+      glint::encode_checkpoint(glint::CheckpointKey::of(1, "light", settings), first.passes_done,
+                               first.samples_per_pixel, first.sums),
+      "ck");
+  REQUIRE(back.sums.has_splats());
+  CHECK(back.sums.splats().words() == first.sums.splats().words());
+  const glint::RenderResult resumed = LightTracing<Chain>::render(
+      scene, settings, {}, glint::RenderStart{&back.sums, back.passes_done});
+  const glint::RenderResult whole = LightTracing<Chain>::render(scene, settings);
+  REQUIRE(resumed.complete());
+  CHECK(resumed.film.pixels() == whole.film.pixels());
+}
+
+// The named variant: `fast`'s policies (Sobol' samples, cosine bounces, Russian roulette)
+// followed from the lights, compiled in glint-renderers. Inside a closed diffuse sphere of radius
+// R and albedo rho with a point light of intensity I at its centre, every point of the wall has
+// the radiance rho I / (pi R^2) (1 - rho^(n+1)) / (1 - rho) after at most n bounces (the series
+// of tests/render/analytic_sphere_test.cpp), and so has every pixel.
+TEST_CASE(
+    "light tracing (variant light_tracing): a lit closed diffuse sphere shows "
+    "rho I / (pi R^2) (1 - rho^(n+1)) / (1 - rho)",
+    "[render][light][statistical]") {
+  using Variant = glint::variants::light_tracing;
+  const glint::Scene scene = build(R"(
+camera    position=0,0,3 look_at=0,0,-10 up=0,1,0 fov=90
+antialias sigma=0.5
+light     position=0,0,0 intensity=400
+sphere    center=0,0,0 radius=10 color=1,1,1 diffuse=0.5
+)",
+                                   "lit sphere");
+  REQUIRE(glint::is_supported<Variant>(scene));
+  const double rho = 0.5, intensity = 400.0, radius = 10.0;
+  glint_test::ComparisonFamily family;
+  for (const int depth : {0, 2, 40}) {
+    glint::RenderSettings settings = glint::RenderSettings::from(scene);
+    settings.samples_per_pixel = 16;
+    settings.max_depth = depth;
+    const glint_test::BlockSamples blocks = glint_test::render_blocks<glint::Renderer<Variant>>(
+        scene, 300 + std::uint64_t(depth), settings);
+    // Three channels, each the same radiance.
+    const double expected = 3.0 * rho * intensity / (M_PI * radius * radius) *
+                            (1.0 - std::pow(rho, depth + 1)) / (1.0 - rho);
+    for (std::size_t b = 0; b <= glint_test::kBlocks; ++b) {
+      std::vector<double> error;
+      for (const double v : blocks.per_seed[b])
+        error.push_back(v - expected);
+      const glint_test::MeanEstimate e = glint_test::estimate_mean(error);
+      std::ostringstream line;
+      line << "max depth " << depth << ", " << glint_test::block_name(b) << ": expected "
+           << expected << ", off by " << e.mean << " +- " << e.standard_error;
+      family.add(line.str(),
+                 glint_test::zero_mean_p_value(e, glint_test::kRelativeRounding * expected));
+    }
+  }
+  family.check();
 }
 
 // ---- the caustic of a glass ball under a point light -----------------------------------------

@@ -100,7 +100,7 @@ void check_every_pixel(const glint::Film& film, Color expected) {
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("renders are bit-identical for 1, 2 and 5 threads", "[render][physics]",
-                        glint_test::AllRenderers) {
+                        glint_test::CameraPathRenderers) {
   // A bit of everything: a lit diffuse floor, octant shading, glass, a mirror, an emitter.
   glint::SceneDescription scene = empty_scene({0.0f, 4.0f, 14.0f}, {0.0f, 1.0f, 0.0f}, 50.0f);
   scene.background = Color(0.05f, 0.1f, 0.2f);
@@ -129,7 +129,7 @@ TEMPLATE_LIST_TEST_CASE("renders are bit-identical for 1, 2 and 5 threads", "[re
 }
 
 TEMPLATE_LIST_TEST_CASE("hard shadows: opaque and glass blockers stop all direct light",
-                        "[render][physics]", glint_test::AllRenderers) {
+                        "[render][physics]", glint_test::CameraPathRenderers) {
   // A diffuse floor (the top of a big sphere, at y = 0) lit by a point light 10 above the
   // origin; the camera sees a small patch around the origin.
   glint::SceneDescription scene = empty_scene({0.0f, 3.0f, 6.0f}, {0.0f, 0.0f, 0.0f}, 0.5f);
@@ -164,7 +164,7 @@ TEMPLATE_LIST_TEST_CASE("hard shadows: opaque and glass blockers stop all direct
 }
 
 TEMPLATE_LIST_TEST_CASE("two-sided diffuse: inside shades like outside", "[render][physics]",
-                        glint_test::AllRenderers) {
+                        glint_test::CameraPathRenderers) {
   // The camera looks at P = (0, 0, 10) on a sphere of radius 10, from outside or from inside.
   // A light at distance d = 8 from P, at 60 degrees from the normal on the camera's side, gives
   // radiance rho I cos(60) / (pi d^2) either way (direct light only).
@@ -199,7 +199,7 @@ TEMPLATE_LIST_TEST_CASE("two-sided diffuse: inside shades like outside", "[rende
 }
 
 TEMPLATE_LIST_TEST_CASE("an emissive sphere shows its emission from outside and inside",
-                        "[render][physics]", glint_test::AllRenderers) {
+                        "[render][physics]", glint_test::CameraPathRenderers) {
   // Emission with few mantissa bits, so that averaging 4 equal samples is exact.
   const Color emission(0.25f, 1.5f, 3.0f);
   glint::SceneDescription scene = empty_scene({0.0f, 0.0f, 20.0f}, Vec3(0.0f), 10.0f);
@@ -212,7 +212,7 @@ TEMPLATE_LIST_TEST_CASE("an emissive sphere shows its emission from outside and 
 }
 
 TEMPLATE_LIST_TEST_CASE("a mirror sphere in a uniform emissive enclosure shows c Le",
-                        "[render][physics]", glint_test::AllRenderers) {
+                        "[render][physics]", glint_test::CameraPathRenderers) {
   const Color le(2.0f, 4.0f, 1.0f), c(0.5f, 0.25f, 0.75f);
   glint::SceneDescription scene = empty_scene({0.0f, 0.0f, 40.0f}, Vec3(0.0f), 6.0f);
   add_sphere(scene, Vec3(0.0f), 100.0f).material = emitter(le);
@@ -244,7 +244,7 @@ TEST_CASE("glass without Fresnel in a uniform enclosure transmits Le times colou
 }
 
 TEMPLATE_LIST_TEST_CASE("clear glass in a uniform enclosure conserves energy", "[render][physics]",
-                        glint_test::AllRenderers) {
+                        glint_test::CameraPathRenderers) {
   // Reflected or refracted, with or without Fresnel, every path ends on the enclosure: Le.
   // Exact per sample with a fixed depth; with Russian roulette exact in expectation.
   const Color le(1.0f, 2.0f, 0.5f);
@@ -354,7 +354,7 @@ TEST_CASE("refraction through glass inside glass uses the inclusion tree's index
 }
 
 TEMPLATE_LIST_TEST_CASE("the near clipping plane hides what is in front of it", "[render][physics]",
-                        glint_test::AllRenderers) {
+                        glint_test::CameraPathRenderers) {
   // From z = 20 looking down the axis: a red sphere spanning t in [4, 6], a blue one spanning
   // t in [17, 23], then the background.
   const Color red(1.0f, 0.0f, 0.0f), blue(0.0f, 0.0f, 1.0f), green(0.0f, 0.5f, 0.0f);

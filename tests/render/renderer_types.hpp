@@ -1,8 +1,10 @@
 #pragma once
 // The renderers the render tests run: every variant the build compiled (glint::compiled::Variants,
-// all the named variants unless the build chose fewer) with the scalar execution (Renderer<V>),
-// and every chain variant among them also with the wavefront one (WavefrontRenderer<V>), so
-// that a physical check written once holds for both execution models.
+// all the named variants unless the build chose fewer) that follows camera paths, with the scalar
+// execution (Renderer<V>), and every chain variant among them also with the wavefront one
+// (WavefrontRenderer<V>), so that a physical check written once holds for both execution models.
+// (A light-tracing variant sees neither the background nor anything through glass or in a
+// mirror: tests/render/light_tracing_test.cpp holds its checks.)
 //
 // They come compiled from the glint-renderers library (cmake/GlintRenderers.cmake): its header
 // declares them extern, so a test that renders with them compiles none of them. A test's own
@@ -31,13 +33,19 @@ struct WavefrontOf<V, true> {
   using type = std::tuple<glint::WavefrontRenderer<V>>;
 };
 
+/// std::tuple<Renderer<V>> for a variant that follows camera paths, else std::tuple<>.
+template <typename V>
+using CameraPathRendererOf = std::conditional_t<glint::kFollowsCameraPaths<typename V::estimator>,
+                                                std::tuple<glint::Renderer<V>>, std::tuple<>>;
+
 template <typename... V>
 auto renderers_of(std::tuple<V...>*)
-    -> decltype(std::tuple_cat(std::tuple<glint::Renderer<V>...>{},
-                               typename WavefrontOf<V>::type{}...));
+    -> decltype(std::tuple_cat(CameraPathRendererOf<V>{}..., typename WavefrontOf<V>::type{}...));
 
-/// Renderer<V> for every compiled variant V, then WavefrontRenderer<V> for the chain ones.
-using AllRenderers = decltype(renderers_of(static_cast<glint::compiled::Variants*>(nullptr)));
+/// Renderer<V> for every compiled variant V that follows camera paths, then WavefrontRenderer<V>
+/// for the chain ones.
+using CameraPathRenderers =
+    decltype(renderers_of(static_cast<glint::compiled::Variants*>(nullptr)));
 
 template <typename... V>
 auto chain_variants(std::tuple<V...>*) -> decltype(std::tuple_cat(

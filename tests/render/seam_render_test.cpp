@@ -172,7 +172,7 @@ glint::SceneDescription overlapping_balls() {
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("seams: a camera ray aimed where two walls cross shows one of them lit",
-                        "[render][seam]", glint_test::AllRenderers) {
+                        "[render][seam]", glint_test::CameraPathRenderers) {
   for (const int behind : {0, 30, 80}) {
     glint::SceneDescription scene = walled_room();
     add_spheres_behind(scene, behind, scene.camera.position);
@@ -187,7 +187,7 @@ TEMPLATE_LIST_TEST_CASE("seams: a camera ray aimed where two walls cross shows o
 
 TEMPLATE_LIST_TEST_CASE(
     "seams: a camera ray aimed where two overlapping balls cross shows one of them lit",
-    "[render][seam]", glint_test::AllRenderers) {
+    "[render][seam]", glint_test::CameraPathRenderers) {
   for (const int behind : {0, 30, 80}) {
     glint::SceneDescription scene = overlapping_balls();
     add_spheres_behind(scene, behind, scene.camera.position);

@@ -8,12 +8,14 @@
 
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "glint/io/checkpoint.hpp"
@@ -81,7 +83,27 @@ void put32(std::vector<char>& bytes, std::size_t at, std::uint32_t v) {
 }
 
 // Offsets in the sample checkpoint (variant "report", 6 bytes).
-constexpr std::size_t kVersionAt = 8, kNameSizeAt = 20, kWidthAt = 30, kPassesAt = 62, kSumsAt = 70;
+constexpr std::size_t kVersionAt = 8, kNameSizeAt = 20, kWidthAt = 30, kPassesAt = 62,
+                      kLayersAt = 70, kSumsAt = 74;
+
+/// sample_checkpoint with a splat layer: in pixel (x, y), channel c, coarse words of x + 3y + c
+/// units and fine words of alternating sign (as the rounding of each splat leaves them).
+glint::Checkpoint sample_checkpoint_with_splats() {
+  glint::Checkpoint c = sample_checkpoint();
+  const glint::PixelSums plain = c.sums;
+  c.sums = glint::PixelSums(5, 3, true);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x)
+      c.sums.at(x, y) = plain.at(x, y);
+  std::vector<std::int64_t>& words = c.sums.splats().words();
+  for (std::size_t i = 0; i < words.size(); i += 2) {
+    const auto pixel = std::int64_t(i / glint::SplatSums::kWordsPerPixel);
+    const auto channel = std::int64_t(i % glint::SplatSums::kWordsPerPixel / 2);
+    words[i] = pixel + channel;
+    words[i + 1] = words[i] == 0 ? 12345 : (i % 4 == 0 ? 1 : -1) * (std::int64_t{1} << 39);
+  }
+  return c;
+}
 
 /// The message with which read_checkpoint refuses `path`, or "" if it reads it.
 std::string refusal(const fs::path& path) {
@@ -132,6 +154,7 @@ TEST_CASE("the format is little-endian with explicit sizes", "[checkpoint]") {
   CHECK(u32(kWidthAt + 4) == 3);
   CHECK(u32(kPassesAt) == 7);
   CHECK(u32(kPassesAt + 4) == 64);
+  CHECK(u32(kLayersAt) == 0);
   double first = 0.0;
   const std::uint64_t bits = u32(kSumsAt) | std::uint64_t(u32(kSumsAt + 4)) << 32;
   std::memcpy(&first, &bits, 8);
@@ -190,7 +213,10 @@ TEST_CASE("a checkpoint with a bad magic, version or header is refused", "[check
   SECTION("version") {
     put32(bytes, kVersionAt, 1);  // float sums, before glint summed in double
     CHECK(decode_error(bytes) ==
-          "cannot resume from ck.bin: format version 1, this glint reads version 2");
+          "cannot resume from ck.bin: format version 1, this glint reads version 3");
+    put32(bytes, kVersionAt, 2);  // no count of layers, no splats
+    CHECK(decode_error(bytes) ==
+          "cannot resume from ck.bin: format version 2, this glint reads version 3");
   }
   SECTION("a variant name longer than any") {
     put32(bytes, kNameSizeAt, 0xffffffffu);
@@ -214,6 +240,17 @@ TEST_CASE("a checkpoint with a bad magic, version or header is refused", "[check
     put32(bytes, kWidthAt + 4, 3);
     CHECK_THAT(decode_error(rehashed(bytes)), Catch::Contains("too long"));
   }
+  SECTION("layers beyond the sums and their splats") {
+    put32(bytes, kLayersAt, 2);
+    CHECK_THAT(decode_error(rehashed(bytes)), Catch::Contains("2 layers of sums"));
+  }
+  SECTION("a splat layer that the file does not hold") {
+    put32(bytes, kLayersAt, 1);
+    CHECK_THAT(decode_error(rehashed(bytes)),
+               Catch::Contains("truncated (" + std::to_string(good.size()) +
+                               " bytes, the header promises " +
+                               std::to_string(kSumsAt + 5 * 3 * (24 + 48) + 8) + ")"));
+  }
   SECTION("passes that end at no pass boundary") {
     put32(bytes, kPassesAt + 4, 63);
     CHECK_THAT(decode_error(rehashed(bytes)),
@@ -222,6 +259,66 @@ TEST_CASE("a checkpoint with a bad magic, version or header is refused", "[check
     CHECK_THAT(decode_error(rehashed(bytes)), Catch::Contains("0 passes"));
     put32(bytes, kPassesAt, 10);
     CHECK_THAT(decode_error(rehashed(bytes)), Catch::Contains("10 passes"));
+  }
+}
+
+TEST_CASE("a checkpoint keeps the splat layer of a light-traced render, bit for bit",
+          "[checkpoint]") {
+  const glint::Checkpoint c = sample_checkpoint_with_splats();
+  const std::vector<char> bytes = glint::encode_checkpoint(c);
+  REQUIRE(bytes.size() == kSumsAt + 5 * 3 * (24 + 48) + 8);
+  const auto word = [&](std::size_t at) {
+    std::uint64_t v = 0;
+    for (int i = 0; i < 8; ++i)
+      v |= std::uint64_t(static_cast<unsigned char>(bytes[at + std::size_t(i)])) << (8 * i);
+    return std::int64_t(v);
+  };
+  CHECK((std::uint64_t(word(kLayersAt)) & 0xffffffffu) == 1);
+  // The splat words follow the sums, pixel by pixel: pixel 1's red coarse word is 1.
+  CHECK(word(kSumsAt + 5 * 3 * 24 + 48) == 1);
+  const glint::Checkpoint back = glint::decode_checkpoint(bytes, "ck.bin");
+  REQUIRE(back.sums.has_splats());
+  CHECK(same_bits(back.sums, c.sums));
+  CHECK(back.sums.splats().words() == c.sums.splats().words());
+  CHECK(glint::encode_checkpoint(back) == bytes);
+
+  // Read from a file in pieces, as --resume does.
+  const fs::path dir = fs::temp_directory_path() / "glint-checkpoint-splats-test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path file = dir / "ck.bin";
+  std::ofstream(file, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+  const glint::Checkpoint read = glint::read_checkpoint(file);
+  CHECK(read.sums.splats().words() == c.sums.splats().words());
+  CHECK(same_bits(read.sums, c.sums));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a checkpoint whose splat sums are negative is refused", "[checkpoint]") {
+  // A splat sum is coarse 2^-16 + fine 2^-56 per channel, the sum of light: never below zero.
+  // Forged with care (the content hash matches), each of these is.
+  const std::int64_t kFineUnitsPerCoarse = std::int64_t{1} << 40;
+  for (const auto& [coarse, fine] : std::vector<std::pair<std::int64_t, std::int64_t>>{
+           {-1, 0},
+           {0, -1},
+           {1, -kFineUnitsPerCoarse - 1},
+           {3, std::numeric_limits<std::int64_t>::min()}}) {
+    INFO("coarse " << coarse << ", fine " << fine);
+    glint::Checkpoint c = sample_checkpoint_with_splats();
+    std::int64_t* green = c.sums.splats().words().data() + (2 * 5 + 3) * 6 + 2;
+    green[0] = coarse;
+    green[1] = fine;
+    CHECK_THAT(decode_error(glint::encode_checkpoint(c)),
+               Catch::EndsWith("pixel (3, 2) holds a negative splat sum, which no render makes"));
+  }
+  // Exactly zero, and the smallest fine part a coarse unit carries, are sound.
+  for (const auto& [coarse, fine] : std::vector<std::pair<std::int64_t, std::int64_t>>{
+           {1, -kFineUnitsPerCoarse}, {0, 0}, {std::int64_t{1} << 23, -(std::int64_t{1} << 62)}}) {
+    glint::Checkpoint c = sample_checkpoint_with_splats();
+    std::int64_t* green = c.sums.splats().words().data() + (2 * 5 + 3) * 6 + 2;
+    green[0] = coarse;
+    green[1] = fine;
+    CHECK(decode_error(glint::encode_checkpoint(c)).empty());
   }
 }
 

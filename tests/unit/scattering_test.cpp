@@ -19,8 +19,8 @@ namespace {
 
 template <typename DiffuseSampling, typename Fresnel = glint::NoFresnel>
 using TestConfig =
-    glint::Config<glint::IndependentSampler, glint::ReportMaterialModel, Fresnel,
-                  glint::NoAntialiasing, glint::UniformShading, DiffuseSampling, glint::FixedDepth>;
+    glint::Config<glint::IndependentSampler, glint::TreePathTracing, Fresnel, glint::NoAntialiasing,
+                  glint::UniformShading, DiffuseSampling, glint::FixedDepth>;
 
 constexpr double kPi = M_PI;
 

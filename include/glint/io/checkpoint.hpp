@@ -3,7 +3,8 @@
 // image they belong to, so that a later run can continue it (Renderer's RenderControl::start)
 // and produce exactly the bytes an uninterrupted render would.
 //
-// The format, little-endian with explicit sizes (version 2; version 1 held float sums):
+// The format, little-endian with explicit sizes (version 3; version 2 had no splat layer,
+// version 1 held float sums):
 //
 //   offset  size  field
 //   0       8     magic "GLINTCKP"
@@ -14,7 +15,10 @@
 //   24+n    4*9   u32 width, height, samples per pixel, max depth, max_pass_samples;
 //                 u64 seed; u32 antialias sigma (float bits)
 //   60+n    8     u32 passes done, u32 samples per pixel done
-//   68+n    24wh  f64 sums, r g b per pixel, rows from the top
+//   68+n    4     u32 layers: 0 (the sums), 1 (the sums and a splat layer)
+//   72+n    24wh  f64 sums, r g b per pixel, rows from the top
+//   ...     48wh  with a splat layer: i64 splat sums, coarse and fine for r g b per pixel, rows
+//                 from the top (image/splat_sums.hpp)
 //   end-8   8     u64 FNV-1a hash of every byte before it
 //
 // The image settings are stored as they are, not only hashed, so that a mismatch can be named.
@@ -80,11 +84,13 @@ struct Checkpoint {
   CheckpointKey key;
   int passes_done = 0;
   int samples_per_pixel_done = 0;
-  PixelSums sums;  ///< per-pixel sums of the samples of the completed passes (PassReport::sums)
+  /// Per-pixel sums of the samples of the completed passes (PassReport::sums), with their splat
+  /// layer where the render splats.
+  PixelSums sums;
 };
 
 inline constexpr char kCheckpointMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'K', 'P'};
-inline constexpr std::uint32_t kCheckpointVersion = 2;
+inline constexpr std::uint32_t kCheckpointVersion = 3;
 inline constexpr std::uint32_t kMaxVariantName = 64;
 
 /// 64-bit FNV-1a, continuing from `hash`: the checkpoint's content and scene hashes. Not a
@@ -102,8 +108,11 @@ inline std::uint64_t fnv1a(const void* data, std::size_t size,
 namespace detail::checkpoint {
 
 inline constexpr std::size_t kFixedHeader = 8 + 4 + 8 + 4;  // up to the variant name
-inline constexpr std::size_t kSettingsAndPasses = 4 * 5 + 8 + 4 + 4 + 4;
+inline constexpr std::size_t kSettingsAndPasses = 4 * 5 + 8 + 4 + 4 + 4 + 4;
 inline constexpr std::size_t kBytesPerPixel = 3 * 8;
+inline constexpr std::size_t kSplatBytesPerPixel = SplatSums::kWordsPerPixel * 8;
+/// Pixels per piece when a checkpoint is written or read in pieces.
+inline constexpr std::size_t kPiecePixels = std::size_t{1} << 14;
 
 /// Writes fields in order into bytes sized beforehand (GCC 12 warns, wrongly, about a
 /// vector<char> growing by insert).
@@ -141,7 +150,8 @@ struct Cursor {
 
 /// The header's fields, read from its first bytes; `size` is where the sums begin.
 struct Header {
-  Checkpoint meta;  ///< everything but the sums
+  Checkpoint meta;      ///< everything but the sums
+  bool splats = false;  ///< a splat layer follows the sums
   std::size_t size = 0;
   std::uint64_t file_size = 0;  ///< what the header says the whole file holds
 };
@@ -177,7 +187,7 @@ Header parse_header(const char* bytes, std::size_t available,
                       max_pass = in.u32();
   key.seed = in.u64();
   key.antialias_sigma = std::bit_cast<float>(in.u32());
-  const std::uint32_t passes = in.u32(), spp_done = in.u32();
+  const std::uint32_t passes = in.u32(), spp_done = in.u32(), layers = in.u32();
 
   // Every count within glint's limits before any of them sizes anything.
   if (width < 1 || width > std::uint32_t(limits::max_image_side) || height < 1 ||
@@ -197,9 +207,17 @@ Header parse_header(const char* bytes, std::size_t available,
   if (passes < 1 || passes > ends.size() || ends[passes - 1] != int(spp_done))
     fail(std::to_string(passes) + " passes of " + std::to_string(spp_done) +
          " samples per pixel, which is no pass boundary of its settings");
+  if (layers > 1)
+    fail(std::to_string(layers) +
+         " layers of sums, where a render keeps its sums and perhaps "
+         "a splat layer");
   header.meta.passes_done = int(passes);
   header.meta.samples_per_pixel_done = int(spp_done);
-  header.file_size = header.size + std::uint64_t(width) * height * kBytesPerPixel + 8;
+  header.splats = layers == 1;
+  header.file_size =
+      header.size +
+      std::uint64_t(width) * height * (kBytesPerPixel + (header.splats ? kSplatBytesPerPixel : 0)) +
+      8;
   if (file_size && *file_size != header.file_size)
     fail((*file_size < header.file_size ? "it is truncated (" : "it is too long (") +
          std::to_string(*file_size) + " bytes, the header promises " +
@@ -227,6 +245,42 @@ inline std::size_t decode_sums(const char* bytes, std::size_t pixels, std::size_
   return bad;
 }
 
+/// Decodes the splat words of `pixels` pixels, from the pixel `first` on (row-major), from
+/// `bytes`. Returns the index of the first pixel whose splat sum no render can have made (a
+/// negative one: splats are light, at least zero), or `bad` unchanged if all are sound.
+inline std::size_t decode_splats(const char* bytes, std::size_t pixels, std::size_t first,
+                                 SplatSums& splats, std::size_t bad) {
+  Cursor in{bytes};
+  std::int64_t* words = splats.words().data() + first * SplatSums::kWordsPerPixel;
+  for (std::size_t i = first; i < first + pixels; ++i) {
+    bool negative = false;
+    for (int c = 0; c < 3; ++c) {
+      const auto coarse = std::int64_t(in.u64()), fine = std::int64_t(in.u64());
+      *words++ = coarse;
+      *words++ = fine;
+      // coarse 2^-kCoarseBits + fine 2^-kFineBits < 0, in integers: coarse below zero, or below
+      // the coarse units that a negative fine part needs, ceil(-fine / 2^(kFineBits -
+      // kCoarseBits)) (unsigned: -fine reaches 2^63).
+      constexpr int kShift = SplatSums::kFineBits - SplatSums::kCoarseBits;
+      const std::uint64_t fine_below_zero = fine < 0 ? 0 - std::uint64_t(fine) : 0;
+      const std::uint64_t coarse_needed =
+          (fine_below_zero + ((std::uint64_t{1} << kShift) - 1)) >> kShift;
+      negative = negative || coarse < 0 || std::uint64_t(coarse) < coarse_needed;
+    }
+    if (negative && i < bad) bad = i;
+  }
+  return bad;
+}
+
+/// Refuses the splats if decode_splats found a pixel `bad` that no render makes, naming it.
+template <typename Fail>
+void check_splats(const SplatSums& splats, std::size_t bad, const Fail& fail) {
+  const std::size_t width = std::size_t(splats.width());
+  if (bad >= std::size_t(splats.width()) * std::size_t(splats.height())) return;
+  fail("pixel (" + std::to_string(bad % width) + ", " + std::to_string(bad / width) +
+       ") holds a negative splat sum, which no render makes");
+}
+
 /// Refuses the sums if decode_sums found a pixel `bad` that no render makes, naming it.
 template <typename Fail>
 void check_sums(const PixelSums& sums, std::size_t bad, const Fail& fail) {
@@ -251,14 +305,12 @@ inline auto failer(const std::string& name) {
 /// Encodes the checkpoint of a render with `key` after `passes_done` passes, when its pixels
 /// hold the sums `sums` of `samples_per_pixel_done` samples each, handing its bytes to
 /// `put(const char* data, std::size_t size)` in order, in pieces of at most some hundred
-/// kilobytes: a checkpoint written this way is never held whole in memory. Throws Error for sums
-/// with a splat layer, which this format does not hold.
+/// kilobytes: a checkpoint written this way is never held whole in memory. The splat layer, where
+/// the sums have one, is kept too.
 template <typename Put>
 void encode_checkpoint_pieces(const CheckpointKey& key, int passes_done, int samples_per_pixel_done,
                               const PixelSums& sums, Put&& put) {
   using namespace detail::checkpoint;
-  if (sums.has_splats())
-    throw Error("glint: a checkpoint cannot hold the splats of a light-traced render");
   std::vector<char> piece(kFixedHeader + key.variant.size() + kSettingsAndPasses);
   Writer out{piece.data()};
   out.bytes(kCheckpointMagic, sizeof kCheckpointMagic);
@@ -273,10 +325,10 @@ void encode_checkpoint_pieces(const CheckpointKey& key, int passes_done, int sam
   out.u32(std::bit_cast<std::uint32_t>(key.antialias_sigma));
   out.u32(std::uint32_t(passes_done));
   out.u32(std::uint32_t(samples_per_pixel_done));
+  out.u32(sums.has_splats() ? 1 : 0);
   std::uint64_t hash = fnv1a(piece.data(), piece.size());
   put(static_cast<const char*>(piece.data()), piece.size());
 
-  constexpr std::size_t kPiecePixels = std::size_t{1} << 14;
   const std::vector<ColorSum>& pixels = sums.pixels();
   for (std::size_t first = 0; first < pixels.size(); first += kPiecePixels) {
     const std::size_t count = std::min(kPiecePixels, pixels.size() - first);
@@ -287,6 +339,19 @@ void encode_checkpoint_pieces(const CheckpointKey& key, int passes_done, int sam
         out.u64(std::bit_cast<std::uint64_t>(v));
     hash = fnv1a(piece.data(), piece.size(), hash);
     put(static_cast<const char*>(piece.data()), piece.size());
+  }
+  if (sums.has_splats()) {
+    const std::vector<std::int64_t>& words = sums.splats().words();
+    constexpr std::size_t kPieceWords = kPiecePixels * SplatSums::kWordsPerPixel;
+    for (std::size_t first = 0; first < words.size(); first += kPieceWords) {
+      const std::size_t count = std::min(kPieceWords, words.size() - first);
+      piece.resize(count * 8);
+      out.at = piece.data();
+      for (std::size_t i = first; i < first + count; ++i)
+        out.u64(std::uint64_t(words[i]));
+      hash = fnv1a(piece.data(), piece.size(), hash);
+      put(static_cast<const char*>(piece.data()), piece.size());
+    }
   }
   piece.resize(8);
   out.at = piece.data();
@@ -301,7 +366,10 @@ inline std::vector<char> encode_checkpoint(const CheckpointKey& key, int passes_
   std::vector<char> out;
   out.reserve(detail::checkpoint::kFixedHeader + key.variant.size() +
               detail::checkpoint::kSettingsAndPasses +
-              sums.pixels().size() * detail::checkpoint::kBytesPerPixel + 8);
+              sums.pixels().size() *
+                  (detail::checkpoint::kBytesPerPixel +
+                   (sums.has_splats() ? detail::checkpoint::kSplatBytesPerPixel : 0)) +
+              8);
   encode_checkpoint_pieces(
       key, passes_done, samples_per_pixel_done, sums,
       [&](const char* data, std::size_t size) { out.insert(out.end(), data, data + size); });
@@ -322,9 +390,14 @@ inline Checkpoint decode_checkpoint(const std::vector<char>& bytes, const std::s
   Cursor in{bytes.data() + bytes.size() - 8};
   if (in.u64() != fnv1a(bytes.data(), bytes.size() - 8))
     fail("it is damaged (its content hash does not match)");
-  c.sums = PixelSums(c.key.width, c.key.height);
+  c.sums = PixelSums(c.key.width, c.key.height, header.splats);
   const std::size_t pixels = c.sums.pixels().size();
   check_sums(c.sums, decode_sums(bytes.data() + header.size, pixels, 0, c.sums, pixels), fail);
+  if (header.splats)
+    check_splats(c.sums.splats(),
+                 decode_splats(bytes.data() + header.size + pixels * kBytesPerPixel, pixels, 0,
+                               c.sums.splats(), pixels),
+                 fail);
   return c;
 }
 
@@ -354,28 +427,45 @@ inline Checkpoint read_checkpoint(const std::filesystem::path& path) {
   }
 
   Checkpoint c = std::move(header.meta);
-  c.sums = PixelSums(c.key.width, c.key.height);
+  c.sums = PixelSums(c.key.width, c.key.height, header.splats);
   std::uint64_t hash = fnv1a(piece.data(), header.size);
   piece.erase(piece.begin(), piece.begin() + std::ptrdiff_t(header.size));
   const std::size_t pixels = c.sums.pixels().size();
-  std::size_t done = 0, bad = pixels;
-  constexpr std::size_t kPiecePixels = std::size_t{1} << 14;
-  while (done < pixels) {
-    // Whole pixels, and the content hash with the last ones.
-    const std::size_t count = std::min(kPiecePixels, pixels - done);
-    const std::size_t want = count * kBytesPerPixel + (done + count == pixels ? 8 : 0);
-    if (const std::size_t have = piece.size(); have < want) {
-      piece.resize(want);
-      if (file.read(piece.data() + have, want - have) != want - have)
-        fail("it shrank while being read");
+  // Reads a layer of `bytes_per_pixel` bytes per pixel in pieces of whole pixels, handing each
+  // to decode(bytes, count, first pixel, bad); with the last layer, the content hash too.
+  const auto read_layer = [&](std::size_t bytes_per_pixel, bool last, const auto& decode) {
+    std::size_t done = 0, bad = pixels;
+    while (done < pixels) {
+      const std::size_t count = std::min(kPiecePixels, pixels - done);
+      const std::size_t size = count * bytes_per_pixel;
+      const std::size_t want = size + (last && done + count == pixels ? 8 : 0);
+      if (const std::size_t have = piece.size(); have < want) {
+        piece.resize(want);
+        if (file.read(piece.data() + have, want - have) != want - have)
+          fail("it shrank while being read");
+      }
+      hash = fnv1a(piece.data(), size, hash);
+      bad = decode(piece.data(), count, done, bad);
+      done += count;
+      piece.erase(piece.begin(), piece.begin() + std::ptrdiff_t(size));
     }
-    hash = fnv1a(piece.data(), count * kBytesPerPixel, hash);
-    bad = decode_sums(piece.data(), count, done, c.sums, bad);
-    done += count;
-    piece.erase(piece.begin(), piece.begin() + std::ptrdiff_t(count * kBytesPerPixel));
-  }
+    return bad;
+  };
+  const std::size_t bad_sum =
+      read_layer(kBytesPerPixel, !header.splats,
+                 [&](const char* bytes, std::size_t count, std::size_t first, std::size_t bad) {
+                   return decode_sums(bytes, count, first, c.sums, bad);
+                 });
+  std::size_t bad_splat = pixels;
+  if (header.splats)
+    bad_splat =
+        read_layer(kSplatBytesPerPixel, true,
+                   [&](const char* bytes, std::size_t count, std::size_t first, std::size_t bad) {
+                     return decode_splats(bytes, count, first, c.sums.splats(), bad);
+                   });
   if (Cursor{piece.data()}.u64() != hash) fail("it is damaged (its content hash does not match)");
-  check_sums(c.sums, bad, fail);
+  check_sums(c.sums, bad_sum, fail);
+  check_splats(c.sums.splats(), bad_splat, fail);
   return c;
 }
 

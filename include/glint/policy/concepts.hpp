@@ -5,6 +5,7 @@
 
 #include <concepts>
 #include <cstdint>
+#include <string_view>
 
 #include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
@@ -72,14 +73,14 @@ concept DiffuseSampling = requires(Vec2 u) {
   { D::pdf(float{}) } -> std::same_as<float>;  // density for a given cos(theta)
 };
 
-/// How a path's lobes are followed: the report traces every lobe with non-zero coefficient
-/// (a tree of rays); a stochastic model follows one lobe per bounce. The model names the
-/// estimator that does it, a class template over the Config: `M::template estimator<C>`. (The
-/// check forms it for `void` without instantiating it, so estimators leave C unconstrained in
-/// their declaration and check it in their body.)
-template <typename M>
-concept MaterialModel = requires {
-  typename M::template estimator<void>;
+/// Which paths estimate the image (camera paths, paths from the lights, ...): the policy names
+/// its execution model, a class template over the Config: `E::template execution<C>`. (The
+/// check forms it for `void` without instantiating it, so executions and estimators leave C
+/// unconstrained in their declaration and check it in their body.)
+template <typename E>
+concept Estimator = requires {
+  { E::name } -> std::convertible_to<std::string_view>;
+  typename E::template execution<void>;
 };
 
 /// Fresnel reflectance of a dielectric interface, used for fully transparent spheres.

@@ -34,8 +34,10 @@
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
-template <RenderConfig C>
+template <typename C>
 class LightTracingExecution {
+  static_assert(RenderConfig<C>);
+
  public:
   static constexpr const char* kName = "light tracing";
   /// Its light lands on any pixel: the sums it adds to have a splat layer.
@@ -56,8 +58,14 @@ class LightTracingExecution {
       throw SettingsError(
           "glint: light tracing needs a pixel filter with an area (antialias sigma > 0 with the "
           "Gaussian filter): no light path reaches a pixel's centre exactly");
+    check_supported(scene);
+  }
+
+  /// Throws UnsupportedSceneError, naming the background's line, for a scene whose background
+  /// is not black.
+  static void check_supported(const Scene& scene) {
     if (!LightEmission::supports(scene))
-      throw UnsupportedSceneError(scene.source(), 0,
+      throw UnsupportedSceneError(scene.source(), scene.background_line(),
                                   "light tracing needs a black background: light paths leave "
                                   "from the point lights and emissive spheres only");
   }

@@ -1,6 +1,6 @@
 #pragma once
-// PathTracer<Config>: the radiance estimator, generic over a Config. The estimator itself is
-// the one C::material_model names (render/estimators/tree.hpp or chain.hpp); both are built
+// PathTracer<Config>: the radiance along camera rays, generic over a Config. The estimator itself
+// is the one C::estimator names (render/estimators/tree.hpp or chain.hpp); both are built
 // from the report's material (render/scattering.hpp) and the shared hit set-up
 // (render/estimators/path_context.hpp).
 
@@ -15,12 +15,12 @@
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// Estimates the radiance arriving along camera rays, with the policies of Config C, by the
-/// estimator C::material_model names.
+/// camera-path estimator C::estimator names.
 template <RenderConfig C>
 class PathTracer {
  public:
   using SamplerType = typename C::sampler;
-  using Estimator = typename C::material_model::template estimator<C>;
+  using Estimator = typename C::estimator::template camera_paths<C>;
 
   PathTracer(const Scene& scene, int max_depth) : estimator_(PathContext<C>(scene, max_depth)) {}
 

@@ -39,6 +39,7 @@
 #include "glint/image/pixel_sums.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/render/camera.hpp"
+#include "glint/render/light_tracing_execution.hpp"
 #include "glint/render/path_tracer.hpp"
 #include "glint/render/render_settings.hpp"
 #include "glint/render/scalar_execution.hpp"
@@ -161,15 +162,13 @@ std::optional<std::uint32_t> first_unsupported_sphere(const Scene& scene) {
   return std::nullopt;
 }
 
-/// Whether variant C can render the scene.
-template <RenderConfig C>
-bool is_supported(const Scene& scene) {
-  return !first_unsupported_sphere<C>(scene).has_value();
-}
-
-/// Throws UnsupportedSceneError, naming the sphere's line, if variant C cannot render the scene.
+/// Throws UnsupportedSceneError, naming the sphere's line, if variant C cannot render the scene:
+/// a shading kind its SphereShading policy does not support, or what its estimator's execution
+/// model refuses (E::check_supported, where it has one: light tracing's black background).
 template <RenderConfig C>
 void check_supported(const Scene& scene) {
+  using E = typename C::estimator::template execution<C>;
+  if constexpr (requires { E::check_supported(scene); }) E::check_supported(scene);
   if (const std::optional<std::uint32_t> sphere = first_unsupported_sphere<C>(scene))
     throw UnsupportedSceneError(scene.source(), scene.sphere_line(*sphere),
                                 "shading '" +
@@ -177,10 +176,21 @@ void check_supported(const Scene& scene) {
                                     "' is not supported by this renderer variant");
 }
 
+/// Whether variant C can render the scene (check_supported would not throw).
+template <RenderConfig C>
+bool is_supported(const Scene& scene) {
+  try {
+    check_supported<C>(scene);
+    return true;
+  } catch (const UnsupportedSceneError&) {
+    return false;
+  }
+}
+
 /// Renders scenes with the policies of Config C, each piece of work (a tile's samples) done by
 /// execution model E: ScalarExecution<C>, one path at a time, by default; WavefrontRenderer
 /// (render/wavefront/wavefront_renderer.hpp) is this renderer with WavefrontExecution<C>.
-template <RenderConfig C, Execution E = ScalarExecution<C>>
+template <RenderConfig C, Execution E = typename C::estimator::template execution<C>>
 class Renderer {
  public:
   using Config = C;

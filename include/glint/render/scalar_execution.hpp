@@ -38,8 +38,10 @@ concept Execution = requires(const E& execution, typename E::ThreadState& state,
 };
 
 /// One path at a time, pixel by pixel: PathTracer<C> over each sample in index order.
-template <RenderConfig C>
+template <typename C>
 class ScalarExecution {
+  static_assert(RenderConfig<C>);
+
  public:
   static constexpr const char* kName = "scalar";
 
@@ -113,7 +115,7 @@ class ScalarExecution {
 
 // Out of the class, so that an explicit instantiation declaration of ScalarExecution<C> keeps
 // other translation units from compiling it (see Renderer::render).
-template <RenderConfig C>
+template <typename C>
 Color ScalarExecution<C>::render_pixel(const PathTracer<C>& tracer, const Camera& camera,
                                        const RenderSettings& settings, int x, int y,
                                        TraceCounters& counters, int samples) {

@@ -55,8 +55,7 @@ inline TreeWork estimate_tree_work(const Scene& scene, int max_depth, int shadow
 
 /// Whether variant C follows every lobe (the tree model), whose cost depends on the scene.
 template <RenderConfig C>
-inline constexpr bool traces_every_lobe =
-    std::is_same_v<typename C::material_model::template estimator<C>, TreeEstimator<C>>;
+inline constexpr bool traces_every_lobe = std::is_same_v<typename C::estimator, TreePathTracing>;
 
 /// Throws SettingsError when variant C would trace more than limits::max_tree_rays_per_sample
 /// rays for one camera sample in the worst case, naming the bound, a sphere that branches and

@@ -72,6 +72,7 @@ class Scene {
     scene.camera_ = description.camera;
     scene.antialias_sigma_ = description.antialias_sigma;
     scene.background_ = description.background;
+    scene.background_line_ = description.background_line;
     scene.lights_ = description.lights;
     const InclusionTree tree = build_inclusion_tree(description);
     const float huge_radius = huge_radius_threshold(description);
@@ -145,6 +146,8 @@ class Scene {
   const EmitterTable& emitters() const { return emitters_; }
   const CameraDescription& camera() const { return camera_; }
   Color background() const { return background_; }
+  /// The line of the scene file that set the background (0 if none did).
+  int background_line() const { return background_line_; }
   /// The image settings and pixel filter width the scene asks for.
   const ImageDescription& image() const { return image_; }
   float antialias_sigma() const { return antialias_sigma_; }
@@ -473,6 +476,7 @@ class Scene {
   CameraDescription camera_;
   float antialias_sigma_ = defaults::antialias_sigma;
   Color background_{0.0f};
+  int background_line_ = 0;
   std::vector<PointLight> lights_;
   EmitterTable emitters_;
   WallSet walls_;

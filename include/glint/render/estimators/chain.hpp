@@ -40,7 +40,7 @@ struct PendingLight {
 /// cost. A diffuse hit gathers the point lights directly (and samples an emissive sphere when
 /// C::light_sampling says so); emission is picked up wherever a ray lands, weighted against
 /// that light sampling; C::path_termination may end a path before the maximum depth. Named by
-/// StochasticMaterialModel.
+/// PathTracing.
 ///
 /// step() is the whole of a bounce: the scalar renderer calls it for one path with the light
 /// rays traced at once, the wavefront renderer for a SIMD register's paths with the light rays

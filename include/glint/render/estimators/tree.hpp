@@ -15,7 +15,7 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 /// path branches into a tree (exponential in depth for materials that mix both). Emission is
 /// picked up wherever a ray lands (weighted against light sampling when C::light_sampling
 /// samples emitters at diffuse hits); C::path_termination may end a branch before the maximum
-/// depth. Named by ReportMaterialModel.
+/// depth. Named by TreePathTracing.
 template <typename C>
 class TreeEstimator {
   static_assert(RenderConfig<C>);

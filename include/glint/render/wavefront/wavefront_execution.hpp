@@ -63,11 +63,11 @@
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
-/// Whether variant C can be rendered by WavefrontRenderer: it follows one lobe per bounce, so a
-/// sample is one path. (The report's tree model follows every lobe: a sample is a tree of rays.)
+/// Whether variant C can be rendered by WavefrontRenderer: its camera paths follow one lobe per
+/// bounce, so a sample is one path. (The report's tree follows every lobe: a sample is a tree of
+/// rays; light tracing follows paths from the lights.)
 template <typename C>
-concept WavefrontConfig =
-    RenderConfig<C> && std::same_as<typename C::material_model, StochasticMaterialModel>;
+concept WavefrontConfig = RenderConfig<C> && std::same_as<typename C::estimator, PathTracing>;
 
 /// Whether every policy the camera and shading stages call has a form for the lanes of a
 /// Float<W> (W paths at once): then WavefrontExecution runs those stages W paths at a time. A
@@ -200,9 +200,9 @@ class WavefrontExecution {
   static_assert(W == 1, "shading several paths at once needs a build with AVX2");
 #endif
   static_assert(WavefrontConfig<C>,
-                "WavefrontRenderer renders chain configurations only (material_model = "
-                "StochasticMaterialModel, one lobe per bounce); the report's tree model follows "
-                "every lobe at each hit, so use Renderer<C> for it");
+                "WavefrontRenderer renders chain configurations only (estimator = PathTracing, "
+                "one lobe per bounce); the report's tree follows every lobe at each hit and light "
+                "tracing starts at the lights, so use Renderer<C> for them");
 
  public:
   static constexpr const char* kName = "wavefront";
