@@ -97,8 +97,8 @@ namespace {
 //
 // A sphere of radiance L subtending half-angle theta at a point, centred on its normal, gives
 // irradiance pi L sin^2(theta) = pi L (r/d)^2 (exact for a sphere: the cap's projected area);
-// the floor reflects rho/pi of it as radiance: rho L (r/d)^2. One bounce is enough for all of
-// it (max_depth 1), and the floor sees nothing else.
+// the floor reflects rho/pi of it as radiance: rho L (r/d)^2. That is the floor's direct
+// light, all of it at max_depth 0, and the floor sees nothing else.
 //
 // The floor's radius is 100, not 1e5: a camera ray meets a sphere of radius R at a distance
 // rounded by ~3e-8 R in float (|origin - centre|^2 - R^2 cancels), which for R = 1e5 moves the
@@ -121,7 +121,7 @@ constexpr Lamp kDistantLamp{1e4, 4.0 * 1e8 / 64.0};
 
 glint::Scene lamp_scene(const Lamp& lamp) {
   return build(
-      "image width=16 height=16 spp=16 max_depth=1\n"
+      "image width=16 height=16 spp=16 max_depth=0\n"
       "camera position=0,1,0 look_at=0,0,0 up=0,0,-1 fov=0.5\n"
       "background color=0,0,0\n"
       "sphere center=0,-100,0 radius=100 diffuse=0.5 color=1,1,1\n"
@@ -374,7 +374,8 @@ TEMPLATE_TEST_CASE(
     "[render][light]", PowerMis<Tree>, PowerMis<Chain>, BalanceMis<Tree>, BalanceMis<Chain>,
     LightOnly<Tree>, LightOnly<Chain>, BouncesOnly<Tree>) {
   // The camera inside a sphere of emission 1 and albedo a: every point of it sees only the
-  // sphere, uniformly bright, so with max_depth D the radiance is 1 + a + ... + a^D. Here
+  // sphere, uniformly bright, so with max_depth D (light after at most D + 1 scattering
+  // vertices) the radiance is 1 + a + ... + a^(D+1). Here
   // light samples are drawn from a point on the emitter itself, seen from inside, and the
   // MIS weights compare a bounce's density with the area density there.
   const glint::Scene scene = build(R"(
@@ -387,7 +388,7 @@ sphere     center=0,0,0 radius=20 diffuse=0.5 color=1,1,1 emission=1,1,1
   glint::RenderSettings settings = glint::RenderSettings::from(scene);
   settings.seed = 4;
   const glint::Film film = render<TestType>(scene, settings);
-  const double expected = 1.0 + 0.5 + 0.25 + 0.125;
+  const double expected = 1.0 + 0.5 + 0.25 + 0.125 + 0.0625;
   const MeanAndError m = statistics(red_channel(film));
   INFO("mean " << m.mean << " +- " << m.standard_error << ", expected " << expected);
   // Five standard errors of the mean of 144 independent pixels, plus float rounding.

@@ -213,9 +213,20 @@ class SceneModel {
     return color;
   }
 
+  /// Whether a ray can meet light where no point light is: an emissive sphere or a background.
+  bool rays_find_light() const {
+    if (d_.background != Color(0.0f)) return true;
+    for (const SphereDescription& sphere : d_.spheres)
+      if (sphere.material.emission != Color(0.0f)) return true;
+    return false;
+  }
+
   /// The expectation (and second moment) of one sample along a ray that has made `depth`
-  /// bounces, for a render with `max_depth`; none when a random diffuse bounce would follow
-  /// (depth < max_depth on a diffuse surface), whose value the model does not know. `key`
+  /// bounces, for a render with `max_depth` (light after at most max_depth + 1 scattering
+  /// vertices: a hit at depth max_depth + 1 only shows its emission); none when a random diffuse
+  /// bounce would follow, whose value the model does not know: on a diffuse surface at depth
+  /// below max_depth, and at max_depth too where a ray can find light (emissive spheres or a
+  /// background), which a last bounce collects. `key`
   /// collects what the path met, so that a pixel whose neighbourhood meets the same things
   /// is known to vary smoothly.
   std::optional<Moments> radiance(const Vec3d& origin, const Vec3d& direction, int depth,
@@ -231,18 +242,17 @@ class SceneModel {
     const Material& m = sphere.material;
     const bool from_inside = glm::dot(direction, hit->outward) > 0.0;
     const Vec3d facing = from_inside ? -hit->outward : hit->outward;
-    const bool continues = depth < max_depth;
-
     Moments result = Moments::constant(to_double(m.emission));
+    if (depth > max_depth) return result;  // beyond the last scattering vertex
     if (m.diffuse > 0.0f) {
-      if (continues) return std::nullopt;  // a diffuse bounce: unknown radiance
+      if (depth < max_depth || rays_find_light())
+        return std::nullopt;  // a diffuse bounce: unknown radiance
       unsigned visible = 0;
       const Vec3d irradiance = direct_irradiance(hit->point, facing, visible);
       mix(key, visible + 0x100u * unsigned(octant_key(*hit)));
       result = result.plus(Moments::constant(double(m.diffuse) / M_PI *
                                              surface_color(hit->sphere, hit->point) * irradiance));
     }
-    if (!continues) return result;
     if (m.mirror > 0.0f) {
       const std::optional<Moments> reflected =
           radiance(hit->point, reflect(direction, facing), depth + 1, max_depth, options, key);

@@ -28,11 +28,13 @@ struct TreeWork {
   std::uint32_t widest_sphere = kNoSphere;  ///< a sphere with that many lobes
 };
 
-/// R(max_depth) = 1 + shadow rays; R(d) = 1 + shadow rays + branching * R(d + 1), capped at
-/// 1e300 so that no depth overflows.
-inline double tree_rays_bound(int branching, int max_depth, int shadow_rays) {
+/// R(max_depth) = 1 + shadow rays (+ branching where the last bounce is traced, its hits only
+/// collecting light: PathContext::bounces_from); R(d) = 1 + shadow rays + branching * R(d + 1),
+/// capped at 1e300 so that no depth overflows.
+inline double tree_rays_bound(int branching, int max_depth, int shadow_rays,
+                              bool last_bounce_traced) {
   const double per_hit = 1.0 + shadow_rays;
-  double rays = per_hit;
+  double rays = per_hit + (last_bounce_traced ? branching : 0);
   for (int depth = max_depth - 1; depth >= 0 && rays < 1e300; --depth)
     rays = per_hit + branching * rays;
   return std::min(rays, 1e300);
@@ -49,7 +51,8 @@ inline TreeWork estimate_tree_work(const Scene& scene, int max_depth, int shadow
       work.widest_sphere = i;
     }
   }
-  work.rays_per_sample = tree_rays_bound(work.branching, max_depth, shadow_rays);
+  work.rays_per_sample =
+      tree_rays_bound(work.branching, max_depth, shadow_rays, rays_can_find_light(scene));
   return work;
 }
 
@@ -68,8 +71,9 @@ void check_work(const Scene& scene, int max_depth) {
     const TreeWork work = estimate_tree_work(scene, max_depth, shadow_rays);
     if (work.rays_per_sample <= limits::max_tree_rays_per_sample) return;
     int depth_within = max_depth;
-    while (depth_within > 0 && tree_rays_bound(work.branching, depth_within, shadow_rays) >
-                                   limits::max_tree_rays_per_sample)
+    while (depth_within > 0 &&
+           tree_rays_bound(work.branching, depth_within, shadow_rays, rays_can_find_light(scene)) >
+               limits::max_tree_rays_per_sample)
       --depth_within;
     const std::string where =
         scene.sphere_line(work.widest_sphere) > 0

@@ -97,17 +97,20 @@ class ChainEstimator {
                path.radiance + path.throughput *
                                    context_.weighted_emission(hits, path.ray, t, it, path.from_pdf),
                path.radiance);
-    const ReportMaterial<C, F> material(it, path.ray.direction, hits);
+    // Beyond the last scattering vertex a hit only collects what it found.
+    const M scatters = hits && context_.scatters_at(path.depth);
+    if (!any(scatters)) return scatters;
+    const ReportMaterial<C, F> material(it, path.ray.direction, scatters);
 
-    // Light: the point lights' shadow rays and the emitter sample, at diffuse hits.
-    const M diffuse = hits && material.has_lobe(Lobe::diffuse);
+    // Light: the point lights' shadow rays and the emitter sample, at diffuse hits. Emitters
+    // are sampled only where a bounce may follow, so that both strategies cover the same paths;
+    // with emitters in the scene one always may (PathContext::bounces_from).
+    const M diffuse = scatters && material.has_lobe(Lobe::diffuse);
     if (any(diffuse)) {
       pending = {diffuse, path.throughput, material.albedo()};
       context_.light_rays(diffuse, it, queue, counters);
-      // Emitters are sampled only where a bounce may follow, so that both strategies cover
-      // the same paths.
       if constexpr (kSamplesEmitters) {
-        const M bounce_may_follow = diffuse && path.depth < context_.max_depth();
+        const M bounce_may_follow = diffuse && context_.bounces_from(path.depth);
         if (any(bounce_may_follow))
           context_.emitter_rays(
               bounce_may_follow, it, material,
@@ -118,7 +121,7 @@ class ChainEstimator {
     // Roulette, then the lobe.
     F continuation;
     const M going_on =
-        context_.roulette(hits && path.depth < context_.max_depth() && material.scatters(),
+        context_.roulette(scatters && context_.bounces_from(path.depth) && material.scatters(),
                           path.depth, max_component(path.throughput), draws, continuation);
     if (!any(going_on)) return going_on;
     const BasicScatterSample<F> next = material.sample(draws, going_on);

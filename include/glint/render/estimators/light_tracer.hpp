@@ -12,10 +12,9 @@
 // sphere shading, diffuse sampling and path termination; the report's material followed one lobe
 // per vertex (ReportMaterial::sample, in the importance transport mode).
 //
-// Path length is counted as the camera paths count it, so that both estimate the same image for
-// the same max_depth: the light of an emissive sphere after at most max_depth scattering
-// vertices between it and the camera, that of a point light after at most max_depth + 1 (a
-// camera path gathers point lights even at the vertex where it stops).
+// Path length is counted as the camera paths count it (render/estimators/path_context.hpp), so
+// that both estimate the same image for the same max_depth: the light of every light after at
+// most max_depth + 1 scattering vertices between it and the camera.
 
 #include <cmath>
 #include <optional>
@@ -57,7 +56,7 @@ class LightTracer {
     const LightOrigin origin = emission_.sample_origin(u_light, u_point);
     const LightRay emitted = LightEmission::sample_ray(origin, sampler.next_2d());
     // The vertices a path may have between the light and the camera (see above).
-    const int most_vertices = origin.is_point_light() ? max_depth_ + 1 : max_depth_;
+    const int most_vertices = max_depth_ + 1;
 
     // The emissive sphere seen by the camera: its radiance from the point, on both sides.
     if (!origin.is_point_light())

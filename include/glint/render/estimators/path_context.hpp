@@ -6,6 +6,13 @@
 // docs/library.md): a point light of intensity I (W/sr) at distance d gives irradiance
 // I * colour * cos(theta) / d^2; a diffuse lobe reflects diffuse * colour / pi of its
 // irradiance as radiance.
+//
+// Path length, one meaning for every light and every estimator: max_depth is the number of
+// bounces after the camera ray, so light reaches the camera after at most max_depth + 1
+// scattering vertices, whether it comes from a point light, an emissive sphere or the
+// background. A ray's depth is the number of scattering vertices before its hit; a hit at depth
+// max_depth gathers its light and bounces once more, and the hit of that bounce (depth
+// max_depth + 1) only collects the emission or background it finds.
 
 #include <bit>
 #include <cmath>
@@ -20,6 +27,15 @@
 #include "glint/scene/scene.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
+
+/// Whether a ray can meet light: the scene has emissive spheres or a background that is not
+/// black. Where it cannot, the bounce from a path's last scattering vertex would find nothing,
+/// and the estimators leave it out.
+inline bool rays_can_find_light(const Scene& scene) {
+  const Color background = scene.background();
+  return !scene.emitters().empty() || background.r != 0.0f || background.g != 0.0f ||
+         background.b != 0.0f;
+}
 
 /// Per-thread tallies; plain integers, summed once at the end of a render.
 struct TraceCounters {
@@ -50,11 +66,27 @@ class PathContext {
       : scene_(scene),
         background_(scene.background()),
         max_depth_(max_depth),
-        has_emitters_(!scene.emitters().empty()) {}
+        has_emitters_(!scene.emitters().empty()),
+        last_bounce_finds_light_(rays_can_find_light(scene)) {}
 
   const Scene& scene() const { return scene_; }
   const Color& background() const { return background_; }
   int max_depth() const { return max_depth_; }
+
+  /// The lanes whose hit at `depth` scatters light (gathers it and may bounce): at most
+  /// max_depth + 1 scattering vertices. A hit beyond only collects emission.
+  template <typename D>
+  MaskFor<D> scatters_at(D depth) const {
+    return depth <= max_depth_;
+  }
+
+  /// The lanes whose scattering vertex at `depth` may bounce: below max_depth always, at
+  /// max_depth only where the bounce's hit can find light to collect.
+  template <typename D>
+  MaskFor<D> bounces_from(D depth) const {
+    return depth < max_depth_ ||
+           (depth == max_depth_ && mask_of<MaskFor<D>>(last_bounce_finds_light_));
+  }
 
   /// The first sphere along `ray`, if any. Counts the ray.
   std::optional<SphereHit> closest_hit(const Ray& ray, TraceCounters& counters) const {
@@ -196,6 +228,7 @@ class PathContext {
   Color background_;
   int max_depth_;
   bool has_emitters_;
+  bool last_bounce_finds_light_;
 };
 
 /// A LightRayQueue that traces each ray at once, for one path (width 1): the irradiance of

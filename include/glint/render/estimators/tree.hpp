@@ -40,11 +40,12 @@ class TreeEstimator {
     const std::optional<SphereHit> hit = context_.closest_hit(ray, counters);
     if (!hit) return context_.background();
     const SurfaceInteraction interaction = context_.interaction(ray, *hit);
-    const ReportMaterial<C> material(interaction, ray.direction);
-
     Color radiance = context_.weighted_emission(true, ray, hit->t, interaction, from_pdf);
+    // Beyond the last scattering vertex a hit only collects what it found.
+    if (!context_.scatters_at(depth)) return radiance;
+    const ReportMaterial<C> material(interaction, ray.direction);
     float continuation = 1.0f;
-    const bool goes_on = depth < context_.max_depth() &&
+    const bool goes_on = context_.bounces_from(depth) &&
                          context_.roulette(true, depth, throughput, sampler, continuation);
 
     // The lobes in this order, each sampled just before it is traced: the order of the
@@ -52,9 +53,10 @@ class TreeEstimator {
     if (material.has_lobe(Lobe::diffuse)) {
       TracedLight light(context_.scene());
       // Emitters are sampled only where a bounce may follow, so that both strategies cover
-      // the same paths and the image is the one without light sampling.
+      // the same paths and the image is the one without light sampling (with emitters in the
+      // scene one always may: PathContext::bounces_from).
       if constexpr (kSamplesEmitters)
-        if (depth < context_.max_depth()) {
+        if (context_.bounces_from(depth)) {
           context_.emitter_rays(
               true, interaction, material,
               [&](const Vec3& direction) { return material.lobe_pdf(Lobe::diffuse, direction); },
