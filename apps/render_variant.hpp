@@ -7,6 +7,7 @@
 
 #include <span>
 #include <string_view>
+#include <type_traits>
 
 #include "cpu_check.hpp"
 #include "glint/instruction_set.hpp"
@@ -38,6 +39,9 @@ inline constexpr bool kVariantSplats =
 inline constexpr std::string_view kVariantDescription =
     glint::kFollowsCameraPaths<typename Variant::estimator>
         ? "Renders SCENE (a glint scene file) with the path tracer and writes an image."
+    : std::is_same_v<typename Variant::estimator, glint::BidirectionalPathTracing>
+        ? "Renders SCENE (a glint scene file) by bidirectional path tracing (paths from the "
+          "camera and from the lights, joined in every way) and writes an image."
         : "Renders SCENE (a glint scene file) by light tracing (paths from the lights, connected "
           "to the camera) and writes an image.";
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <type_traits>
 
+#include "glint/render/bidirectional_execution.hpp"
 #include "glint/render/light_tracing_execution.hpp"
 #include "glint/render/scalar_execution.hpp"
 #include "glint/render/wavefront/wavefront_execution.hpp"
@@ -23,6 +24,8 @@ const char* execution_template() {
     return "glint::ScalarExecution";
   else if constexpr (std::is_same_v<E, glint::LightTracingExecution<V>>)
     return "glint::LightTracingExecution";
+  else if constexpr (std::is_same_v<E, glint::BidirectionalExecution<V>>)
+    return "glint::BidirectionalExecution";
   else
     static_assert(std::is_same_v<E, glint::ScalarExecution<V>>,
                   "an execution model list_variants.cpp does not know: name it here");

@@ -21,6 +21,7 @@
 #include "glint/io/input_file.hpp"
 #include "glint/io/scene_reader.hpp"
 #include "glint/io/scene_writer.hpp"
+#include "glint/render/bidirectional_execution.hpp"
 #include "glint/render/light_tracing_execution.hpp"
 #include "glint/render/renderer.hpp"
 #include "glint/render/wavefront/wavefront_renderer.hpp"

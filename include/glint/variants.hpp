@@ -2,8 +2,9 @@
 // Named renderer variants: the one list of them. `report` is the report's renderer; every other
 // variant but the three built on `fast` changes exactly one policy from it (an ablation), so
 // comparing it with `report` measures that one feature. `fast` combines the policies that give
-// the best image per second; `fast_no_emitter_sampling` takes one of them away again, and
-// `light_tracing` replaces its estimator (camera paths) by paths from the lights.
+// the best image per second; `fast_no_emitter_sampling` takes one of them away again,
+// `light_tracing` replaces its estimator (camera paths) by paths from the lights, and
+// `bidirectional` by both, joined.
 //
 // Each variant is a type derived from its Config that carries its name, a line saying what it
 // changes and whether it converges to the report's image (as pbrt-v4's types carry Name()).
@@ -107,6 +108,16 @@ struct light_tracing : fast::with_estimator<LightTracing> {
       "through glass or in a mirror",
       kDifferentImage};
 };
+/// Every light path there is: `fast`'s policies, a camera subpath and a light subpath per sample
+/// joined in every way, weighted by the power heuristic. Converges to the image with caustics,
+/// which the camera-path variants miss under point lights, so it differs from `report`'s there.
+struct bidirectional : fast::with_estimator<BidirectionalPathTracing> {
+  static constexpr VariantInfo info{
+      "bidirectional",
+      "`fast` followed from the camera and the lights, joined with MIS: caustics of point "
+      "lights, and what mirrors and glass show",
+      kDifferentImage};
+};
 struct emitter_sampling : report::with_light_sampling<EmitterSampling<PowerHeuristic>> {
   static constexpr VariantInfo info{
       "emitter_sampling", "emissive spheres sampled at diffuse hits, MIS with the power heuristic",
@@ -117,7 +128,7 @@ struct emitter_sampling : report::with_light_sampling<EmitterSampling<PowerHeuri
 using all = std::tuple<report, fast, no_fresnel, schlick_fresnel, no_antialiasing, box_antialiasing,
                        tent_antialiasing, cosine_hemisphere, stochastic_material, russian_roulette,
                        uniform_shading, stratified_sampler, sobol_sampler, emitter_sampling,
-                       fast_no_emitter_sampling, light_tracing>;
+                       fast_no_emitter_sampling, light_tracing, bidirectional>;
 
 /// The variant glint-render (without a suffix) is built with.
 using default_variant = fast;

@@ -330,6 +330,31 @@ if(TARGET glint-render-light-tracing)
   endif()
 endif()
 
+# Bidirectional path tracing (glint-render-bidirectional) renders what light tracing cannot (a
+# background, pixel centres); its splats go into checkpoints, and a render stopped and resumed
+# gives the uninterrupted bytes.
+if(TARGET glint-render-bidirectional)
+  glint_cli_test(bidirectional-help PROGRAM glint-render-bidirectional STATUS 0
+                 STDOUT "by bidirectional path tracing" ARGS --help)
+  glint_cli_test(bidirectional-background PROGRAM glint-render-bidirectional STATUS 0
+                 OUTPUT out.png EXPECT_OUTPUT ARGS ${glint_cli_scenes}/sky.scene -o out.png)
+  glint_cli_test(bidirectional-pixel-centres PROGRAM glint-render-bidirectional STATUS 0
+                 OUTPUT out.png EXPECT_OUTPUT ARGS ${glint_cli_scenes}/pixel-centres.scene -o out.png)
+  if(GLINT_BASH)
+    foreach(case checkpoint_resume)
+      string(REPLACE "_" "-" name ${case})
+      add_test(NAME "cli: bidirectional-${name}"
+               COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash ${case}
+                       $<TARGET_FILE:glint-render-bidirectional> ${glint_cli_scenes}/tiny.scene
+                       ${PROJECT_BINARY_DIR}/cli-test/bidirectional-${name})
+      # A sample follows two paths and joins them: a sixteenth of the pixels keeps the case's
+      # three renders near the others' time.
+      set_tests_properties("cli: bidirectional-${name}" PROPERTIES LABELS "cli;long"
+                           ENVIRONMENT GLINT_LONG_RENDER_SIZE=80x60)
+    endforeach()
+  endif()
+endif()
+
 # The execution model (tests/cli/execution_model_test.bash): --scalar renders a finite image of
 # the right size; the default and --scalar agree statistically; a checkpoint of either model
 # resumes with either to the uninterrupted bytes; a variant without the wavefront renderer

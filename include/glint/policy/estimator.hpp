@@ -24,6 +24,8 @@ template <typename C>
 class ScalarExecution;  // render/scalar_execution.hpp
 template <typename C>
 class LightTracingExecution;  // render/light_tracing_execution.hpp
+template <typename C>
+class BidirectionalExecution;  // render/bidirectional_execution.hpp
 
 /// The report's renderer: camera paths that, at every hit, follow each lobe with a non-zero
 /// coefficient, weighted by its coefficient. Diffuse gets direct light plus one random bounce;
@@ -58,7 +60,18 @@ struct LightTracing {
   using execution = LightTracingExecution<C>;
 };
 
-static_assert(Estimator<TreePathTracing> && Estimator<PathTracing> && Estimator<LightTracing>);
+/// A camera subpath and a light subpath per sample, joined in every way the report's material
+/// allows and weighted by the power heuristic (render/estimators/bidirectional.hpp): the caustics
+/// of light tracing, the direct light of next-event estimation and what the camera sees through
+/// mirrors and glass, each from the strategy that samples it best. Any background.
+struct BidirectionalPathTracing {
+  static constexpr std::string_view name = "bidirectional path tracing";
+  template <typename C>
+  using execution = BidirectionalExecution<C>;
+};
+
+static_assert(Estimator<TreePathTracing> && Estimator<PathTracing> && Estimator<LightTracing> &&
+              Estimator<BidirectionalPathTracing>);
 
 /// Whether estimator policy E follows camera paths (a PathTracer renders them, one at a time or
 /// in a wavefront), rather than paths from the lights.

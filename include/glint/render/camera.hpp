@@ -70,6 +70,15 @@ class Camera {
 
   const Vec3& position() const { return position_; }
 
+  /// Density per unit solid angle of a ray in unit `direction` when its film point is drawn
+  /// with density one per pixel area: 1 / (p^2 cos^3(theta)), p the size of a pixel on the plane
+  /// at distance 1 and theta the angle to the viewing direction (zero behind the camera).
+  float solid_angle_density(const Vec3& direction) const {
+    const float cosine = glm::dot(direction, forward_);
+    if (!(cosine > 0.0f)) return 0.0f;
+    return 1.0f / ((pixel_scale_ * pixel_scale_) * (cosine * cosine * cosine));
+  }
+
   /// Where the camera sees `point`: none when it is behind the camera or not beyond the near
   /// plane (ray_through's rays start there), the film position otherwise, on the film or not.
   std::optional<CameraConnection> connect(const Vec3& point) const {

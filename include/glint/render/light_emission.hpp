@@ -10,6 +10,7 @@
 // emissive sphere of radiance L emits L from both sides of its surface, pi L per unit area on
 // each side, 2 pi L times its area in all.
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct LightOrigin {
   /// For a sphere: its radiance over (probability of the light x density of the point per unit
   /// area). For a point light: its intensity times colour over the probability of the light.
   Color weight;
+  /// The density of having chosen the point: the light's probability, per unit area on a
+  /// sphere.
+  float density;
   bool is_point_light() const { return sphere == kNoSphere; }
 };
 
@@ -66,6 +70,37 @@ class LightEmission {
   /// Whether the scene has no light with power: then no light path carries anything.
   bool empty() const { return empty_; }
 
+  /// A light chosen in proportion to power: a point light (`index` in the scene's point lights)
+  /// or an emissive sphere (`index` in its emitters), with the probability of the choice.
+  struct Choice {
+    bool point_light;
+    std::uint32_t index;
+    float probability;
+  };
+  /// The light for a uniform number u in [0, 1), as sample_origin chooses it. Requires !empty().
+  Choice choose(float u) const {
+    const std::size_t entry = choice_of(cdf_, u);
+    return {lights_[entry].kind == Kind::point, lights_[entry].index, probability_[entry]};
+  }
+
+  /// The density with which sample_origin chooses a point of emitter `emitter`, per unit area.
+  float sphere_density(std::uint32_t emitter) const {
+    return probability_[scene_->lights().size() + emitter] / scene_->emitters()[emitter].area();
+  }
+
+  /// Density per unit solid angle of sample_ray's direction from a point light.
+  static float point_direction_pdf() { return 1.0f / (4.0f * kPi); }
+  /// Density per unit solid angle of sample_ray's `direction` from a point of a sphere of
+  /// outward normal `normal` there: a side with probability 1/2, then the cosine about it.
+  static float sphere_direction_pdf(const Vec3& normal, const Vec3& direction) {
+    return 0.5f * kInvPi * std::fabs(glm::dot(normal, direction));
+  }
+  /// Density per unit solid angle of sample_ray's `direction` from `origin`.
+  static float direction_pdf(const LightOrigin& origin, const Vec3& direction) {
+    return origin.is_point_light() ? point_direction_pdf()
+                                   : sphere_direction_pdf(origin.normal, direction);
+  }
+
   /// Whether light paths carry all of the scene's light: its background is black.
   static bool supports(const Scene& scene) {
     const Color background = scene.background();
@@ -80,11 +115,13 @@ class LightEmission {
     const float probability = probability_[index];
     if (light.kind == Kind::point) {
       const PointLight& point = scene_->lights()[light.index];
-      return {point.position, Vec3(0.0f), kNoSphere, (point.intensity * point.color) / probability};
+      return {point.position, Vec3(0.0f), kNoSphere, (point.intensity * point.color) / probability,
+              probability};
     }
     const SphereEmitter& e = scene_->emitters()[light.index];
     const Vec3 normal = sample_uniform_sphere(u_point);
-    return {e.center + e.radius * normal, normal, e.sphere, e.radiance * (e.area() / probability)};
+    return {e.center + e.radius * normal, normal, e.sphere, e.radiance * (e.area() / probability),
+            probability / e.area()};
   }
 
   /// A direction for the light leaving `origin`, by `u`: uniform over the sphere of directions

@@ -17,7 +17,6 @@
 // pixel's centre exactly) and a black background (light paths leave from the lights only).
 
 #include <atomic>
-#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -27,6 +26,7 @@
 #include "glint/instruction_set.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/estimators/light_tracer.hpp"
+#include "glint/render/film_splatter.hpp"
 #include "glint/render/render_settings.hpp"
 #include "glint/render/tile_grid.hpp"
 #include "glint/scene/scene.hpp"
@@ -52,9 +52,8 @@ class LightTracingExecution {
       : camera_(scene.camera(), settings.width, settings.height),
         tracer_(scene, camera_, settings.max_depth),
         settings_(settings),
-        footprint_(C::antialiasing::footprint(settings.antialias_sigma)),
-        per_path_(1.0f / (float(settings.width) * float(settings.height))) {
-    if (!(footprint_ > 0.0f))
+        splatter_(settings) {
+    if (!splatter_.has_area())
       throw SettingsError(
           "glint: light tracing needs a pixel filter with an area (antialias sigma > 0 with the "
           "Gaussian filter): no light path reaches a pixel's centre exactly");
@@ -89,7 +88,11 @@ class LightTracingExecution {
                                     std::uint32_t(settings_.samples_per_pixel),
                                     settings_.seed ^ kLightStream});
           tracer_.trace(
-              sampler, [&](Vec2 film, const Color& light) { splat(splats, film, light, counters); },
+              sampler,
+              [&](Vec2 film, const Color& light) {
+                splatter_.add(
+                    splats, film, light, [](float) { return 1.0f; }, counters);
+              },
               counters);
         }
         samples += std::uint64_t(last - first);
@@ -98,43 +101,10 @@ class LightTracingExecution {
   }
 
  private:
-  /// `light` landing at film position `film`, on every pixel whose filter covers it, weighted
-  /// by the filter's density there and by 1 / (width x height).
-  void splat(SplatSums& splats, Vec2 film, const Color& light, TraceCounters& counters) const {
-    if (!(std::isfinite(light.r) && std::isfinite(light.g) && std::isfinite(light.b))) {
-      ++counters.invalid_samples;
-      return;
-    }
-    // The pixels whose centres (x + 0.5, y + 0.5) lie within the footprint of the point.
-    const float x_low = std::ceil(film.x - 0.5f - footprint_);
-    const float x_high = std::floor(film.x - 0.5f + footprint_);
-    const float y_low = std::ceil(film.y - 0.5f - footprint_);
-    const float y_high = std::floor(film.y - 0.5f + footprint_);
-    if (!(x_high >= 0.0f && y_high >= 0.0f && x_low < float(settings_.width) &&
-          y_low < float(settings_.height)))
-      return;
-    const int x0 = int(std::fmax(x_low, 0.0f));
-    const int x1 = int(std::fmin(x_high, float(settings_.width - 1)));
-    const int y0 = int(std::fmax(y_low, 0.0f));
-    const int y1 = int(std::fmin(y_high, float(settings_.height - 1)));
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) {
-        const Vec2 offset(film.x - (float(x) + 0.5f), film.y - (float(y) + 0.5f));
-        const float density = C::antialiasing::density(offset, settings_.antialias_sigma);
-        if (!(density > 0.0f)) continue;
-        const Color value = light * (density * per_path_);
-        if (SplatSums::representable(value))
-          splats.add(x, y, value);
-        else
-          ++counters.invalid_samples;
-      }
-  }
-
   Camera camera_;
   LightTracer<C> tracer_;  // holds a reference to camera_, declared before it
   RenderSettings settings_;
-  float footprint_;
-  float per_path_;
+  FilmSplatter<C> splatter_;
 };
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -38,6 +38,7 @@
 #include "glint/image/film.hpp"
 #include "glint/image/pixel_sums.hpp"
 #include "glint/instruction_set.hpp"
+#include "glint/render/bidirectional_execution.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/light_tracing_execution.hpp"
 #include "glint/render/path_tracer.hpp"

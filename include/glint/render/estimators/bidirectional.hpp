@@ -1,0 +1,549 @@
+#pragma once
+// Bidirectional path tracing (Veach and Guibas 1995; Veach's thesis, chapter 10): for each
+// sample a camera subpath z_0 (the camera), z_1, ... and a light subpath y_0 (a point on a light),
+// y_1, ..., and every way of joining them: a full path of s light vertices and t camera vertices
+// (a "strategy (s, t)") is
+//   s = 0   the camera subpath reaching an emissive sphere by itself,
+//   s = 1   a camera vertex joined to a point drawn on a light (next-event estimation),
+//   t = 1   a light vertex joined to the camera (light tracing: a splat on the pixels that see it),
+//   s, t >= 2  a light vertex joined to a camera vertex by a shadow ray.
+// A path of k scattering vertices can come from k + 2 such strategies; each contribution is
+// weighted by the power heuristic over all the strategies that could have made the same path, so
+// that a caustic comes from light tracing, a lamp's direct light from next-event estimation and a
+// small lamp seen in a mirror from the camera subpath, each where it samples best.
+//
+// Joins need a vertex that scatters in every direction: the report's diffuse lobe. Mirror and
+// refraction vertices are deltas, passed through by the subpaths; point lights are deltas of
+// position, reached only by joins; the camera is a pinhole, reached only by joins. The
+// background is light that only camera subpaths find, so its weight is one.
+//
+// Densities are per unit area at the vertex they produce (per unit solid angle converted by
+// |cos| / distance^2), as pbrt-v4's BDPT keeps them; a vertex produced through a delta keeps no
+// density (zero, read as one in the ratios, where the delta cancels). The camera's density for a
+// direction is its pixel filter's density at the film point over width x height (the light
+// paths per sample that could have splatted there), so that light tracing's weight in a pixel
+// follows the filter; a filter without an area (pixel centres) gives light tracing no weight,
+// and no light path is joined to the camera.
+//
+// Path length is counted as every estimator counts it (render/estimators/path_context.hpp): at
+// most max_depth + 1 scattering vertices between a light and the camera, s + t - 2 of them for
+// strategy (s, t).
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "glint/config.hpp"
+#include "glint/geometry/ray.hpp"
+#include "glint/instruction_set.hpp"
+#include "glint/render/camera.hpp"
+#include "glint/render/estimators/path_context.hpp"
+#include "glint/render/light_emission.hpp"
+#include "glint/render/scattering.hpp"
+#include "glint/scene/scene.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE {
+
+/// A vertex of a camera or a light subpath.
+struct PathVertex {
+  enum class Kind : std::uint8_t { camera, point_light, sphere_light, surface };
+  Kind kind = Kind::surface;
+  Vec3 point{0.0f};
+  /// The sphere's outward normal at the point; zero for the camera and a point light.
+  Vec3 normal{0.0f};
+  /// The normal on the side the subpath arrived from (a surface), which its diffuse lobe
+  /// reflects to.
+  Vec3 facing{0.0f};
+  std::uint32_t sphere = kNoSphere;
+  /// The subpath's weight at the vertex: what it carries there over the densities of the
+  /// choices that made it (emitted radiance or importance, times f |cos| / pdf at each vertex
+  /// before).
+  Color beta{0.0f};
+  /// diffuse coefficient x colour at a surface: its diffuse lobe's f is albedo / pi.
+  Color albedo{0.0f};
+  /// The probability with which the material chooses its diffuse lobe (zero: it has none, and
+  /// no join can use the vertex).
+  float diffuse_choice = 0.0f;
+  /// The subpath went on from here through a mirror or refraction: no other strategy could
+  /// have chosen its next vertex.
+  bool delta = false;
+  /// Density of this vertex as its subpath produced it, per unit area (for the first light
+  /// vertex: the light's probability, per unit area on a sphere); zero behind a delta.
+  float pdf_forward = 0.0f;
+  /// Density of this vertex had the other subpath produced it, per unit area.
+  float pdf_reverse = 0.0f;
+
+  bool is_light() const { return kind == Kind::point_light || kind == Kind::sphere_light; }
+  /// Whether a join may end at this vertex: it scatters (or emits, or sees) in every direction.
+  bool joinable() const { return kind != Kind::surface || diffuse_choice > 0.0f; }
+};
+
+namespace detail {
+
+/// Density per unit area at `to` of a direction from `from` of density `solid_angle_pdf`:
+/// |cos| at `to` over the squared distance (no cosine where `to` is not on a surface).
+inline float area_density(float solid_angle_pdf, const PathVertex& from, const PathVertex& to) {
+  const Vec3 offset = to.point - from.point;
+  const float distance2 = glm::dot(offset, offset);
+  if (!(distance2 > 0.0f)) return 0.0f;
+  float pdf = solid_angle_pdf / distance2;
+  if (to.kind == PathVertex::Kind::surface || to.kind == PathVertex::Kind::sphere_light)
+    pdf *= std::fabs(glm::dot(to.normal, offset)) / std::sqrt(distance2);
+  return pdf;
+}
+
+/// A density ratio's terms with a delta's zero read as one (the delta cancels in the ratio).
+inline float nonzero(float pdf) {
+  return pdf != 0.0f ? pdf : 1.0f;
+}
+
+}  // namespace detail
+
+/// The power heuristic's weight of strategy (s, t) for the full path made of light[0, s) and
+/// camera[0, t) (light[0] on a light, camera[0] the camera), whose vertices' pdf_forward and
+/// pdf_reverse are the densities of both directions along this full path: the joined vertices'
+/// reverse densities already set for the join, and their delta flags cleared. Strategies with
+/// t = 1 (joins to the camera) count only where `light_tracing_counts`. The weight is
+/// 1 / (1 + sum over the other strategies of (their density / this one's)^2), the ratios built
+/// vertex by vertex from the ends of the join outwards. Exposed for tests, which hold it against
+/// an explicit sum over all strategies.
+inline float bidirectional_weight(std::span<const PathVertex> light,
+                                  std::span<const PathVertex> camera, bool light_tracing_counts) {
+  const std::size_t s = light.size(), t = camera.size();
+  float sum = 0.0f;
+  // Fewer camera vertices: camera[i] made by the light side. Strategy (s + t - i, i).
+  float ratio = 1.0f;
+  for (std::size_t i = t - 1; i > 0; --i) {
+    ratio *= detail::nonzero(camera[i].pdf_reverse) / detail::nonzero(camera[i].pdf_forward);
+    const bool joinable = !camera[i].delta && !camera[i - 1].delta;
+    if (joinable && (i > 1 || light_tracing_counts)) sum += ratio * ratio;
+  }
+  // Fewer light vertices: light[i] made by the camera side. Strategy (i, s + t - i).
+  ratio = 1.0f;
+  for (std::size_t i = s; i-- > 0;) {
+    ratio *= detail::nonzero(light[i].pdf_reverse) / detail::nonzero(light[i].pdf_forward);
+    const bool before_delta =
+        i > 0 ? light[i - 1].delta : light[0].kind == PathVertex::Kind::point_light;
+    if (!light[i].delta && !before_delta) sum += ratio * ratio;
+  }
+  return 1.0f / (1.0f + sum);
+}
+
+/// Bidirectional path tracing with the policies of Config C: its sampler, Fresnel, sphere shading,
+/// diffuse sampling and path termination, the report's material followed one lobe per vertex
+/// (ReportMaterial::sample) in both subpaths.
+template <RenderConfig C>
+class BidirectionalPathTracer {
+ public:
+  using SamplerType = typename C::sampler;
+
+  /// `pixels`: the image's width x height, the light paths of one sample per pixel.
+  /// `light_tracing_counts`: whether the pixel filter has an area, so that joins to the camera
+  /// can land on pixels.
+  BidirectionalPathTracer(const Scene& scene, const Camera& camera, int max_depth, float pixels,
+                          bool light_tracing_counts)
+      : scene_(scene),
+        camera_(camera),
+        emission_(scene),
+        context_(scene, max_depth),
+        most_vertices_(max_depth + 1),
+        pixels_(pixels),
+        light_tracing_counts_(light_tracing_counts) {}
+
+  /// The most vertices a subpath holds (the camera or the light's point included): the size of
+  /// the scratch spans that sample() takes.
+  int subpath_capacity() const { return most_vertices_ + 2; }
+
+  const LightEmission& emission() const { return emission_; }
+
+  /// One sample: the camera subpath starts with `ray` through the film point whose density in
+  /// its pixel's filter is `filter_density`, with values from `camera_sampler`; the light
+  /// subpath draws from `light_sampler`. Returns the light for the pixel; joins to the camera
+  /// go to `splat(film, light, filter_weight)`, where the light arriving at film point `film`
+  /// counts, in a pixel whose filter density there is h, with the power heuristic's weight
+  /// 1 / (1 + h^2 filter_weight) (filter_weight from bidirectional_weight's terms for h = 1).
+  /// `camera_vertices` and `light_vertices` are scratch of subpath_capacity() vertices.
+  template <typename Splat>
+  Color sample(const Ray& ray, float filter_density, SamplerType& camera_sampler,
+               SamplerType& light_sampler, std::span<PathVertex> camera_vertices,
+               std::span<PathVertex> light_vertices, Splat&& splat, TraceCounters& counters) const {
+    Color radiance(0.0f);
+    const std::size_t t_count =
+        camera_subpath(ray, filter_density, camera_sampler, camera_vertices, radiance, counters);
+    const std::size_t s_count = light_subpath(light_sampler, light_vertices, counters);
+    const std::span<PathVertex> z = camera_vertices.first(t_count);
+    const std::span<PathVertex> y = light_vertices.first(s_count);
+
+    for (std::size_t t = 1; t <= t_count; ++t)
+      for (std::size_t s = 0; s <= s_count; ++s) {
+        // s + t - 2 scattering vertices; s = t = 1 would join a light to the camera directly.
+        if (s + t < 2 || int(s + t) - 2 > most_vertices_) continue;
+        if (s == 0) {
+          if (t >= 2) radiance += emitted(z, t);
+        } else if (t == 1) {
+          if (light_tracing_counts_) join_camera(y, s, splat, counters);
+        } else if (s == 1) {
+          radiance += join_light(z, t, camera_sampler, counters);
+        } else {
+          radiance += join(y, s, z, t, counters);
+        }
+      }
+    return radiance;
+  }
+
+ private:
+  using Kind = PathVertex::Kind;
+
+  /// The camera subpath into `z`, z[0] the camera; the background its rays escape to goes
+  /// straight to `radiance` (no other strategy finds it). Returns the vertices made.
+  std::size_t camera_subpath(const Ray& ray, float filter_density, SamplerType& sampler,
+                             std::span<PathVertex> z, Color& radiance,
+                             TraceCounters& counters) const {
+    PathVertex& eye = z[0];
+    eye = PathVertex{};
+    eye.kind = Kind::camera;
+    eye.point = camera_.position();
+    eye.beta = Color(1.0f);
+    // The density of the ray's direction, per unit solid angle, as a strategy that splats would
+    // have to match it: the filter's density over the light paths per sample.
+    const float direction_pdf =
+        filter_density * camera_.solid_angle_density(ray.direction) / pixels_;
+    return walk(ray, eye.beta, direction_pdf, sampler, z, 1, Transport::radiance, radiance,
+                counters);
+  }
+
+  /// The light subpath into `y`, y[0] on a light. Returns the vertices made (none where the
+  /// scene has no light with power).
+  std::size_t light_subpath(SamplerType& sampler, std::span<PathVertex> y,
+                            TraceCounters& counters) const {
+    if (emission_.empty()) return 0;
+    const float u_light = sampler.next_1d();
+    const Vec2 u_point = sampler.next_2d();
+    const LightOrigin origin = emission_.sample_origin(u_light, u_point);
+    const LightRay emitted = LightEmission::sample_ray(origin, sampler.next_2d());
+    PathVertex& source = y[0];
+    source = PathVertex{};
+    source.kind = origin.is_point_light() ? Kind::point_light : Kind::sphere_light;
+    source.point = origin.point;
+    source.normal = origin.normal;
+    source.sphere = origin.sphere;
+    source.beta = origin.weight;
+    source.pdf_forward = origin.density;
+    if (!(max_component(emitted.weight) > 0.0f)) return 1;
+    Color unused(0.0f);
+    return walk(emitted.ray, emitted.weight,
+                LightEmission::direction_pdf(origin, emitted.ray.direction), sampler, y, 1,
+                Transport::importance, unused, counters);
+  }
+
+  /// Follows `ray` from vertex v[first - 1], carrying `beta`, its direction drawn with density
+  /// `direction_pdf` per unit solid angle (zero: through a delta), adding vertices to `v` while
+  /// the path length allows; camera subpaths collect the background in `background`. Returns
+  /// the number of vertices.
+  std::size_t walk(Ray ray, Color beta, float direction_pdf, SamplerType& sampler,
+                   std::span<PathVertex> v, std::size_t first, Transport mode, Color& background,
+                   TraceCounters& counters) const {
+    const float start = max_component(beta);
+    std::size_t n = first;
+    for (;;) {
+      const std::optional<SphereHit> hit = context_.closest_hit(ray, counters);
+      if (!hit) {
+        if (mode == Transport::radiance) background += beta * context_.background();
+        return n;
+      }
+      const SurfaceInteraction it = context_.interaction(ray, *hit);
+      PathVertex& vertex = v[n];
+      PathVertex& previous = v[n - 1];
+      vertex = PathVertex{};
+      vertex.kind = Kind::surface;
+      vertex.point = it.point;
+      vertex.normal = it.outward_normal;
+      vertex.facing = it.at.facing_normal;
+      vertex.sphere = it.sphere;
+      vertex.beta = beta;
+      vertex.pdf_forward = detail::area_density(direction_pdf, previous, vertex);
+      ++n;
+      // The vertex's depth: scattering vertices before it on its subpath (the camera and the
+      // light's point are not).
+      const int depth = int(n) - 2;
+      if (!context_.scatters_at(depth)) return n;
+      const ReportMaterial<C> material(it, ray.direction);
+      if (!material.scatters()) return n;
+      if (material.has_lobe(Lobe::diffuse)) {
+        vertex.albedo = material.albedo();
+        vertex.diffuse_choice = material.lobe_probability(Lobe::diffuse);
+      }
+      // A light subpath's vertex is joined to camera vertices and to the camera; it goes on only
+      // where a longer path is allowed. A camera subpath goes on as the path tracer does.
+      const bool goes_on = mode == Transport::radiance ? bool(context_.bounces_from(depth))
+                                                       : depth < context_.max_depth();
+      if (!goes_on || n == v.size()) return n;
+      if constexpr (C::path_termination::uses_roulette) {
+        const float p =
+            C::path_termination::continue_probability(depth, max_component(beta) / start);
+        if (p < 1.0f) {
+          if (sampler.next_1d() >= p) return n;
+          beta /= p;
+        }
+      }
+      const ScatterSample next = mode == Transport::radiance
+                                     ? material.template sample<Transport::radiance>(sampler)
+                                     : material.template sample<Transport::importance>(sampler);
+      beta *= next.weight();
+      if (next.delta) {
+        vertex.delta = true;
+        direction_pdf = 0.0f;
+      } else {
+        direction_pdf = next.pdf;
+        // The reverse density of the previous vertex: this one choosing it, from the next.
+        previous.pdf_reverse = detail::area_density(
+            scattering_pdf(vertex, previous.point - vertex.point), vertex, previous);
+      }
+      if (!(max_component(beta) > 0.0f)) return n;
+      ray = PathContext<C>::continue_rays(it, next.direction);
+    }
+  }
+
+  /// Density per unit solid angle with which surface vertex `v`'s material chooses `direction`
+  /// (unnormalised) by its diffuse lobe: zero where the direction leaves on the other side.
+  static float scattering_pdf(const PathVertex& v, const Vec3& direction) {
+    const float cosine = glm::dot(glm::normalize(direction), v.facing);
+    if (!(cosine > 0.0f) || !(v.diffuse_choice > 0.0f)) return 0.0f;
+    return v.diffuse_choice * C::diffuse_sampling::pdf(cosine);
+  }
+
+  /// Density per unit area with which vertex `v` (reached from `from`, which its density does
+  /// not depend on for the lobes joins use) produces `to`: a light emitting, a surface
+  /// scattering.
+  float density(const PathVertex& v, const PathVertex& to) const {
+    const Vec3 direction = to.point - v.point;
+    float pdf = 0.0f;
+    if (v.kind == Kind::point_light)
+      pdf = LightEmission::point_direction_pdf();
+    else if (v.kind == Kind::sphere_light)
+      pdf = LightEmission::sphere_direction_pdf(v.normal, glm::normalize(direction));
+    else if (v.kind == Kind::surface)
+      pdf = scattering_pdf(v, direction);
+    return detail::area_density(pdf, v, to);
+  }
+
+  /// f at surface vertex `v` for light going to `direction` (unnormalised): its diffuse lobe's
+  /// albedo / pi on the side it was reached from.
+  static Color diffuse_value(const PathVertex& v, const Vec3& direction) {
+    return glm::dot(direction, v.facing) > 0.0f ? v.albedo * kInvPi : Color(0.0f);
+  }
+
+  /// Whether nothing lies between surface vertex a and vertex b (on a sphere, or a point
+  /// light's point).
+  bool visible(const PathVertex& a, const PathVertex& b, TraceCounters& counters) const {
+    const Vec3 offset = b.point - a.point;
+    const float distance = std::sqrt(glm::dot(offset, offset));
+    if (!(distance > 0.0f)) return false;
+    const Vec3 direction = offset / distance;
+    const Ray ray = ray_leaving_sphere(a.point, direction, a.sphere, a.normal);
+    ++counters.rays;
+    if (b.sphere == kNoSphere) {
+      Ray shadow = ray;
+      shadow.t_max = distance;
+      return !scene_.occluded(shadow);
+    }
+    // b is the first point of its sphere along the ray where the ray meets that sphere first
+    // on b's side: entering it where b faces the ray, leaving it from inside otherwise. No
+    // distance decides it, so no rounding of one does.
+    const std::optional<SphereHit> hit = scene_.closest_hit(ray);
+    if (!hit || hit->sphere != b.sphere) return false;
+    const Vec3 at = ray.origin + hit->t * ray.direction;
+    const bool enters_hit = glm::dot(ray.direction, at - scene_.surface(b.sphere).center) < 0.0f;
+    return enters_hit == (glm::dot(direction, b.normal) < 0.0f);
+  }
+
+  /// Strategy s = 0: the camera subpath's last vertex z[t - 1] on an emissive sphere.
+  Color emitted(std::span<PathVertex> z, std::size_t t) const {
+    PathVertex& pt = z[t - 1];
+    const std::uint32_t emitter = scene_.surface(pt.sphere).emitter;
+    if (emitter == kNotAnEmitter) return Color(0.0f);
+    const Color le = scene_.surface(pt.sphere).material.emission;
+    // As a light's vertex: its origin density, and its emission towards z[t - 2].
+    PathVertex& before = z[t - 2];
+    const PathVertex light_view = as_light(pt, emitter);
+    const float saved_pt = pt.pdf_reverse, saved_before = before.pdf_reverse;
+    const bool saved_delta = pt.delta;
+    pt.pdf_reverse = light_view.pdf_forward;
+    before.pdf_reverse = density(light_view, before);
+    pt.delta = false;
+    const float weight = bidirectional_weight({}, z.first(t), light_tracing_counts_);
+    pt.pdf_reverse = saved_pt;
+    before.pdf_reverse = saved_before;
+    pt.delta = saved_delta;
+    return pt.beta * le * weight;
+  }
+
+  /// Surface vertex `v` on emitter `emitter` seen as the first vertex of a light subpath.
+  PathVertex as_light(const PathVertex& v, std::uint32_t emitter) const {
+    PathVertex light = v;
+    light.kind = Kind::sphere_light;
+    light.pdf_forward = emission_.sphere_density(emitter);
+    return light;
+  }
+
+  /// Strategy t = 1: light vertex y[s - 1] joined to the camera.
+  template <typename Splat>
+  void join_camera(std::span<PathVertex> y, std::size_t s, Splat& splat,
+                   TraceCounters& counters) const {
+    PathVertex& qs = y[s - 1];
+    if (!qs.joinable()) return;
+    const std::optional<CameraConnection> to_camera = camera_.connect(qs.point);
+    if (!to_camera) return;
+    Color value;
+    if (qs.kind == Kind::sphere_light)
+      value = qs.beta * std::fabs(glm::dot(to_camera->direction, qs.normal));
+    else if (qs.kind == Kind::surface)
+      value = qs.beta * diffuse_value(qs, to_camera->direction) *
+              std::fabs(glm::dot(to_camera->direction, qs.normal));
+    else
+      return;  // a point light: the camera cannot see a point
+    if (value == Color(0.0f)) return;
+    ++counters.rays;
+    if (scene_.occluded(ray_leaving_sphere(qs.point, to_camera->direction, qs.sphere, qs.normal,
+                                           to_camera->unclipped_distance)))
+      return;
+    // The weight's terms for a filter density of one at the film point: the camera's density
+    // for qs is h x solid_angle_density x |cos at qs| / distance^2 / pixels.
+    PathVertex eye{};
+    eye.kind = Kind::camera;
+    eye.point = camera_.position();
+    const float camera_pdf =
+        detail::area_density(camera_.solid_angle_density(-to_camera->direction) / pixels_, eye, qs);
+    const float saved_qs = qs.pdf_reverse;
+    const bool saved_delta = qs.delta;
+    qs.pdf_reverse = camera_pdf;
+    qs.delta = false;
+    float saved_before = 0.0f;
+    if (s >= 2) {
+      PathVertex& before = y[s - 2];
+      saved_before = before.pdf_reverse;
+      before.pdf_reverse = density(qs, before);
+    }
+    // 1 / w - 1 with the camera's density at h = 1: every term holds h^2 once.
+    const float w = bidirectional_weight(y.first(s), std::span<const PathVertex>(&eye, 1), true);
+    const float filter_weight = 1.0f / w - 1.0f;
+    qs.pdf_reverse = saved_qs;
+    qs.delta = saved_delta;
+    if (s >= 2) y[s - 2].pdf_reverse = saved_before;
+    splat(to_camera->film, value * to_camera->importance, filter_weight);
+  }
+
+  /// Strategy s = 1: camera vertex z[t - 1] joined to a point drawn on a light: a light
+  /// chosen by power (as light subpaths choose it), then the point light itself, or a direction
+  /// towards the emissive sphere as the path tracer draws it (uniform in the cone it subtends,
+  /// or through a uniform point of its area from inside). The weight counts the light's point
+  /// with the light subpaths' density, as pbrt-v4 does, so that all strategies' weights come from
+  /// one set of densities and sum to one.
+  Color join_light(std::span<PathVertex> z, std::size_t t, SamplerType& sampler,
+                   TraceCounters& counters) const {
+    PathVertex& pt = z[t - 1];
+    if (emission_.empty()) return Color(0.0f);
+    // The draws come before the test of the vertex, so that every vertex draws the same.
+    const float u_light = sampler.next_1d();
+    const Vec2 u_point = sampler.next_2d();
+    if (pt.kind != Kind::surface || !pt.joinable()) return Color(0.0f);
+    const LightEmission::Choice choice = emission_.choose(u_light);
+    PathVertex light{};
+    Color value;
+    if (choice.point_light) {
+      const PointLight& point = scene_.lights()[choice.index];
+      light.kind = Kind::point_light;
+      light.point = point.position;
+      light.pdf_forward = choice.probability;
+      const Vec3 to_light = light.point - pt.point;
+      const float distance2 = glm::dot(to_light, to_light);
+      const Vec3 direction = to_light / std::sqrt(distance2);
+      value = pt.beta * diffuse_value(pt, direction) *
+              (std::fabs(glm::dot(direction, pt.normal)) * point.intensity /
+               (distance2 * choice.probability)) *
+              point.color;
+      if (value == Color(0.0f) || !visible(pt, light, counters)) return Color(0.0f);
+    } else {
+      const SphereEmitter& emitter = scene_.emitters()[choice.index];
+      const bool from_inside = glm::dot(pt.facing, pt.normal) < 0.0f;
+      const std::optional<EmitterDirection> sampled = emitter.sample_direction(
+          pt.point, emitter.view_from(pt.point, pt.sphere, from_inside), u_point);
+      if (!sampled || !(sampled->pdf > 0.0f)) return Color(0.0f);
+      value = pt.beta * diffuse_value(pt, sampled->direction) *
+              (std::fabs(glm::dot(sampled->direction, pt.normal)) /
+               (choice.probability * sampled->pdf)) *
+              emitter.radiance;
+      if (value == Color(0.0f)) return Color(0.0f);
+      // The light arrives where the first sphere along the direction is the emitter.
+      ++counters.rays;
+      const Ray ray = ray_leaving_sphere(pt.point, sampled->direction, pt.sphere, pt.normal);
+      const std::optional<SphereHit> hit = scene_.closest_hit(ray);
+      if (!hit || hit->sphere != emitter.sphere) return Color(0.0f);
+      light.kind = Kind::sphere_light;
+      light.point = ray.at(hit->t);
+      light.normal = glm::normalize(light.point - emitter.center);
+      light.sphere = emitter.sphere;
+      light.pdf_forward = emission_.sphere_density(choice.index);
+    }
+    PathVertex& before = z[t - 2];
+    const float saved_pt = pt.pdf_reverse, saved_before = before.pdf_reverse;
+    const bool saved_delta = pt.delta;
+    pt.pdf_reverse = density(light, pt);
+    before.pdf_reverse = density(pt, before);
+    pt.delta = false;
+    light.pdf_reverse = density(pt, light);
+    const float weight = bidirectional_weight(std::span<const PathVertex>(&light, 1), z.first(t),
+                                              light_tracing_counts_);
+    pt.pdf_reverse = saved_pt;
+    before.pdf_reverse = saved_before;
+    pt.delta = saved_delta;
+    return value * weight;
+  }
+
+  /// Strategies s, t >= 2: light vertex y[s - 1] joined to camera vertex z[t - 1].
+  Color join(std::span<PathVertex> y, std::size_t s, std::span<PathVertex> z, std::size_t t,
+             TraceCounters& counters) const {
+    PathVertex& qs = y[s - 1];
+    PathVertex& pt = z[t - 1];
+    if (qs.kind != Kind::surface || pt.kind != Kind::surface || !qs.joinable() || !pt.joinable())
+      return Color(0.0f);
+    const Vec3 offset = pt.point - qs.point;
+    const float distance2 = glm::dot(offset, offset);
+    if (!(distance2 > 0.0f)) return Color(0.0f);
+    const Vec3 direction = offset / std::sqrt(distance2);  // from qs to pt
+    const float geometry = std::fabs(glm::dot(direction, qs.normal)) *
+                           std::fabs(glm::dot(direction, pt.normal)) / distance2;
+    const Color value =
+        qs.beta * diffuse_value(qs, direction) * geometry * diffuse_value(pt, -direction) * pt.beta;
+    if (value == Color(0.0f) || !visible(qs, pt, counters)) return Color(0.0f);
+    PathVertex& qs_before = y[s - 2];
+    PathVertex& pt_before = z[t - 2];
+    const float saved[4] = {qs.pdf_reverse, pt.pdf_reverse, qs_before.pdf_reverse,
+                            pt_before.pdf_reverse};
+    const bool saved_delta[2] = {qs.delta, pt.delta};
+    pt.pdf_reverse = density(qs, pt);
+    pt_before.pdf_reverse = density(pt, pt_before);
+    qs.pdf_reverse = density(pt, qs);
+    qs_before.pdf_reverse = density(qs, qs_before);
+    qs.delta = pt.delta = false;
+    const float weight = bidirectional_weight(y.first(s), z.first(t), light_tracing_counts_);
+    qs.pdf_reverse = saved[0];
+    pt.pdf_reverse = saved[1];
+    qs_before.pdf_reverse = saved[2];
+    pt_before.pdf_reverse = saved[3];
+    qs.delta = saved_delta[0];
+    pt.delta = saved_delta[1];
+    return value * weight;
+  }
+
+  const Scene& scene_;
+  const Camera& camera_;
+  LightEmission emission_;
+  PathContext<C> context_;
+  int most_vertices_;  ///< scattering vertices a path may have: max_depth + 1
+  float pixels_;
+  bool light_tracing_counts_;
+};
+
+}  // namespace glint::inline GLINT_ISA_NAMESPACE
