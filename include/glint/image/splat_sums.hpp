@@ -29,6 +29,9 @@ class SplatSums {
   static constexpr int kCoarseBits = 16;
   static constexpr int kFineBits = 56;
   static constexpr double kLargestSplat = 4294967296.0;  // 2^32
+  /// 2^kCoarseBits and 2^kFineBits.
+  static constexpr double kCoarseScale = double(std::uint64_t(1) << kCoarseBits);
+  static constexpr double kFineScale = double(std::uint64_t(1) << kFineBits);
 
   SplatSums() = default;
   SplatSums(int width, int height)
@@ -53,13 +56,15 @@ class SplatSums {
     for (int c = 0; c < 3; ++c) {
       if (value[c] == 0.0f) continue;
       const double v = double(value[c]);
-      // Both products are exact in double (scaling by a power of two, and the difference of v
-      // and its coarse rounding is a multiple of v's last place, below 2^-kCoarseBits).
-      const double coarse = std::nearbyint(std::ldexp(v, kCoarseBits));
-      const double rest = v - std::ldexp(coarse, -kCoarseBits);
-      const double fine = std::nearbyint(std::ldexp(rest, kFineBits));
-      std::atomic_ref<std::int64_t>(pixel[2 * c])
-          .fetch_add(std::int64_t(coarse), std::memory_order_relaxed);
+      // Every product is exact in double (scaling by a power of two, and the difference of v
+      // and its coarse rounding is a multiple of v's last place, below 2^-kCoarseBits). A locked
+      // addition is the cost of a splat: none for a word that would add zero.
+      const double coarse = std::nearbyint(v * kCoarseScale);
+      const double rest = v - coarse * (1.0 / kCoarseScale);
+      const double fine = std::nearbyint(rest * kFineScale);
+      if (coarse != 0.0)
+        std::atomic_ref<std::int64_t>(pixel[2 * c])
+            .fetch_add(std::int64_t(coarse), std::memory_order_relaxed);
       if (fine != 0.0)
         std::atomic_ref<std::int64_t>(pixel[2 * c + 1])
             .fetch_add(std::int64_t(fine), std::memory_order_relaxed);
@@ -77,8 +82,8 @@ class SplatSums {
     const std::int64_t* pixel = words_.data() + index(x, y);
     glm::dvec3 sum;
     for (int c = 0; c < 3; ++c)
-      sum[c] = std::ldexp(double(pixel[2 * c]), -kCoarseBits) +
-               std::ldexp(double(pixel[2 * c + 1]), -kFineBits);
+      sum[c] = double(pixel[2 * c]) * (1.0 / kCoarseScale) +
+               double(pixel[2 * c + 1]) * (1.0 / kFineScale);
     return sum;
   }
 

@@ -4,6 +4,7 @@
 // and vector forms, so a pixel that depended on them would depend on more than the scene, the
 // settings and the seed. Accurate to about an ulp over the arguments the warps use.
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -80,7 +81,12 @@ inline float exponential(float x) {
   p = p * r + 1.6666665459e-1f;
   p = p * r + 5.0000001201e-1f;
   const float e_r = p * r2 + r + 1.0f;
-  return std::ldexp(e_r, int(k));
+  // 2^k is a float for every k here (-149 to 127: subnormal below -126), and one correctly
+  // rounded product by it is what std::ldexp gives, without its call.
+  const int power = int(k);
+  const std::uint32_t bits = power >= -126 ? std::uint32_t(power + 127) << 23
+                                           : std::uint32_t(1) << (power + 149);
+  return e_r * std::bit_cast<float>(bits);
 }
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE
