@@ -2,7 +2,8 @@
 // render/bidirectional_execution.hpp): its weights against an explicit sum over all strategies; the
 // same bits whatever the threads, tiles and passes, and after a resume; the same image as the path
 // tracer wherever the path tracer sees all the light (lamps, glass and mirrors seen by the camera,
-// a background, pixel centres); and a point light's caustic under a glass ball, which the path
+// a background, pixel centres), and as light tracing where it does (a point light's caustics
+// through glass and off mirrors); and a point light's caustic under a glass ball, which the path
 // tracer misses, against the fan of rays of tests/render/caustic_reference.hpp.
 
 #include <array>
@@ -17,6 +18,7 @@
 #include "caustic_reference.hpp"
 #include "glint/io/scene_reader.hpp"
 #include "glint/render/bidirectional_execution.hpp"
+#include "glint/render/light_tracing_execution.hpp"
 #include "glint/render/renderer.hpp"
 #include "renderer_types.hpp"
 #include "same_bits.hpp"
@@ -215,6 +217,37 @@ TEST_CASE("bidirectional: agrees with the path tracer wherever the path tracer s
   // and the other strategies carry all of it.
   compare.operator()<PixelCentres>(kLampRoom, "lamp room through pixel centres");
   compare.operator()<Chain>(kSky, "sky");
+  family.check();
+}
+
+// A floor and a back wall, which is all the camera sees, lit by a point light and a small lamp
+// through and off a glass ball, a mirror ball and a ball both diffuse and mirror, all out of
+// view: caustics of a point light through glass and off a mirror, which only light paths find,
+// and their light scattered on between the floor and the wall. Light tracing sees all of it.
+constexpr const char* kCaustics = R"(
+image     width=16 height=16 spp=64 max_depth=4
+camera    position=0,2,6 look_at=0,0,-2 up=0,1,0 fov=40
+antialias sigma=0.5
+light     position=0,9,-1 intensity=150
+sphere    center=0,-100000,0 radius=1e5 color=0.6,0.6,0.6
+sphere    center=0,0,-100006 radius=1e5 color=0.5,0.6,0.7
+sphere    center=0,4,-1 radius=1 diffuse=0 transparent=1 ior=1.5
+sphere    center=-3,5,-3 radius=1 diffuse=0 mirror=1
+sphere    center=3,5,-3 radius=1 diffuse=0.4 mirror=0.5 color=0.9,0.7,0.3
+sphere    center=3,6,-4 radius=0.3 diffuse=0 emission=30,30,30
+)";
+
+TEST_CASE("bidirectional: agrees with light tracing where light tracing sees all the light",
+          "[render][light][statistical]") {
+  const glint::Scene scene = build(kCaustics, "caustics");
+  const glint::RenderSettings settings = glint::RenderSettings::from(scene);
+  glint_test::ComparisonFamily family;
+  const double lit = glint_test::compare_independent(
+      family, "caustics, bidirectional against light tracing",
+      glint_test::render_blocks<glint::Renderer<Chain, glint::LightTracingExecution<Chain>>>(
+          scene, 100, settings),
+      glint_test::render_blocks<Bidirectional<Chain>>(scene, 200, settings));
+  CHECK(lit > 0.01);
   family.check();
 }
 
