@@ -177,7 +177,8 @@ class BidirectionalPathTracer {
 
     for (std::size_t t = 1; t <= t_count; ++t)
       for (std::size_t s = 0; s <= s_count; ++s) {
-        // s + t - 2 scattering vertices; s = t = 1 would join a light to the camera directly.
+        // s + t - 2 scattering vertices; (0, 1) would be the camera alone. (1, 1) is a lamp
+        // seen by the camera, joined to it as light tracing joins it.
         if (s + t < 2 || int(s + t) - 2 > most_vertices_) continue;
         if (s == 0) {
           if (t >= 2) radiance += emitted(z, t);
@@ -313,9 +314,9 @@ class BidirectionalPathTracer {
     return v.diffuse_choice * C::diffuse_sampling::pdf(cosine);
   }
 
-  /// Density per unit area with which vertex `v` (reached from `from`, which its density does
-  /// not depend on for the lobes joins use) produces `to`: a light emitting, a surface
-  /// scattering.
+  /// Density per unit area with which vertex `v` produces `to`: a light emitting, a surface
+  /// scattering by its diffuse lobe (whose density does not depend on where the path came from,
+  /// but for the side).
   float density(const PathVertex& v, const PathVertex& to) const {
     const Vec3 direction = to.point - v.point;
     float pdf = 0.0f;
