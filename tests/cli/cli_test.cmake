@@ -322,8 +322,9 @@ if(TARGET glint-render-light-tracing)
                COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash ${case}
                        $<TARGET_FILE:glint-render-light-tracing> ${glint_cli_scenes}/tiny.scene
                        ${PROJECT_BINARY_DIR}/cli-test/light-tracing-${name})
-      # A light path costs several camera paths' work (a camera connection at each vertex):
-      # a quarter of the pixels keeps the three renders of each case near the others' time.
+      # Each join of a light path to the camera lands on every pixel of the filter's footprint
+      # (about 36 for the Gaussian), each a locked addition: a quarter of the pixels keeps the
+      # three renders of each case near the others' time.
       set_tests_properties("cli: light-tracing-${name}" PROPERTIES LABELS "cli;long"
                            ENVIRONMENT GLINT_LONG_RENDER_SIZE=160x120)
     endforeach()
