@@ -155,8 +155,6 @@ class BidirectionalPathTracer {
   /// the scratch spans that sample() takes.
   int subpath_capacity() const { return most_vertices_ + 2; }
 
-  const LightEmission& emission() const { return emission_; }
-
   /// One sample: the camera subpath starts with `ray` through the film point whose density in
   /// its pixel's filter is `filter_density`, with values from `camera_sampler`; the light
   /// subpath draws from `light_sampler`. Returns the light for the pixel; joins to the camera
@@ -349,9 +347,9 @@ class BidirectionalPathTracer {
       shadow.t_max = distance;
       return !scene_.occluded(shadow);
     }
-    // b is the first point of its sphere along the ray where the ray meets that sphere first
-    // on b's side: entering it where b faces the ray, leaving it from inside otherwise. No
-    // distance decides it, so no rounding of one does.
+    // The ray reaches b where the first sphere it meets is b's, met on b's side: entering it
+    // where b faces the ray, from inside where b faces away. No distance decides it, so no
+    // rounding of one does.
     const std::optional<SphereHit> hit = scene_.closest_hit(ray);
     if (!hit || hit->sphere != b.sphere) return false;
     const Vec3 at = ray.origin + hit->t * ray.direction;
