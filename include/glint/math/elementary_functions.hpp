@@ -84,8 +84,8 @@ inline float exponential(float x) {
   // 2^k is a float for every k here (-149 to 127: subnormal below -126), and one correctly
   // rounded product by it is what std::ldexp gives, without its call.
   const int power = int(k);
-  const std::uint32_t bits = power >= -126 ? std::uint32_t(power + 127) << 23
-                                           : std::uint32_t(1) << (power + 149);
+  const std::uint32_t bits =
+      power >= -126 ? std::uint32_t(power + 127) << 23 : std::uint32_t(1) << (power + 149);
   return e_r * std::bit_cast<float>(bits);
 }
 

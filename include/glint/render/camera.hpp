@@ -76,7 +76,7 @@ class Camera {
   float solid_angle_density(const Vec3& direction) const {
     const float cosine = glm::dot(direction, forward_);
     if (!(cosine > 0.0f)) return 0.0f;
-    return 1.0f / ((pixel_scale_ * pixel_scale_) * (cosine * cosine * cosine));
+    return 1.0f / solid_angle_per_pixel(cosine);
   }
 
   /// Where the camera sees `point`: none when it is behind the camera or not beyond the near
@@ -91,13 +91,18 @@ class Camera {
     const float sx = glm::dot(offset, right_) / depth;
     const float sy = glm::dot(offset, up_) / depth;
     const Vec2 film(sx / pixel_scale_ + half_width_, half_height_ - sy / pixel_scale_);
-    const float importance =
-        1.0f / ((pixel_scale_ * pixel_scale_) * (cosine * cosine * cosine) * distance2);
+    const float importance = 1.0f / (solid_angle_per_pixel(cosine) * distance2);
     return CameraConnection{film, -offset / distance, distance, distance - near_ / cosine,
                             importance};
   }
 
  private:
+  /// The solid angle of the rays through one pixel's area of film at angle theta to the viewing
+  /// direction (cos(theta) = `cosine`): p^2 cos^3(theta).
+  float solid_angle_per_pixel(float cosine) const {
+    return (pixel_scale_ * pixel_scale_) * (cosine * cosine * cosine);
+  }
+
   Vec3 position_;
   Vec3 forward_{}, right_{}, up_{};
   float near_;

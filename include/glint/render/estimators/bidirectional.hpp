@@ -29,6 +29,7 @@
 // most max_depth + 1 scattering vertices between a light and the camera, s + t - 2 of them for
 // strategy (s, t).
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -364,18 +365,48 @@ class BidirectionalPathTracer {
     if (emitter == kNotAnEmitter) return Color(0.0f);
     const Color le = scene_.surface(pt.sphere).material.emission;
     // As a light's vertex: its origin density, and its emission towards z[t - 2].
-    PathVertex& before = z[t - 2];
     const PathVertex light_view = as_light(pt, emitter);
-    const float saved_pt = pt.pdf_reverse, saved_before = before.pdf_reverse;
-    const bool saved_delta = pt.delta;
-    pt.pdf_reverse = light_view.pdf_forward;
-    before.pdf_reverse = density(light_view, before);
-    pt.delta = false;
-    const float weight = bidirectional_weight({}, z.first(t), light_tracing_counts_);
-    pt.pdf_reverse = saved_pt;
-    before.pdf_reverse = saved_before;
-    pt.delta = saved_delta;
+    const float weight = join_weight(
+        {}, z.first(t), {0.0f, 0.0f, light_view.pdf_forward, density(light_view, z[t - 2])});
     return pt.beta * le * weight;
+  }
+
+  /// The reverse densities a join sets: of the subpaths' joined vertices (each made by the
+  /// other one) and of the vertices before them (made through the joined ones). Zero where the
+  /// subpath has no such vertex.
+  struct JoinDensities {
+    float light_end, light_before, camera_end, camera_before;
+  };
+
+  /// bidirectional_weight of the join of light[0, s) and camera[0, t): for the call only, the
+  /// join's reverse densities set and the joined vertices' deltas cleared (their own next
+  /// vertices are not on this path).
+  float join_weight(std::span<PathVertex> light, std::span<PathVertex> camera,
+                    const JoinDensities& join) const {
+    struct Saved {
+      PathVertex* vertex;
+      float pdf_reverse;
+      bool delta;
+    };
+    std::array<Saved, 4> saved{};
+    std::size_t count = 0;
+    const auto set = [&](std::span<PathVertex> path, std::size_t from_end, float pdf) {
+      if (path.size() <= from_end) return;
+      PathVertex& v = path[path.size() - 1 - from_end];
+      saved[count++] = {&v, v.pdf_reverse, v.delta};
+      v.pdf_reverse = pdf;
+      if (from_end == 0) v.delta = false;
+    };
+    set(light, 0, join.light_end);
+    set(light, 1, join.light_before);
+    set(camera, 0, join.camera_end);
+    set(camera, 1, join.camera_before);
+    const float weight = bidirectional_weight(light, camera, light_tracing_counts_);
+    while (count-- > 0) {
+      saved[count].vertex->pdf_reverse = saved[count].pdf_reverse;
+      saved[count].vertex->delta = saved[count].delta;
+    }
+    return weight;
   }
 
   /// Surface vertex `v` on emitter `emitter` seen as the first vertex of a light subpath.
@@ -414,22 +445,10 @@ class BidirectionalPathTracer {
     eye.point = camera_.position();
     const float camera_pdf =
         detail::area_density(camera_.solid_angle_density(-to_camera->direction) / pixels_, eye, qs);
-    const float saved_qs = qs.pdf_reverse;
-    const bool saved_delta = qs.delta;
-    qs.pdf_reverse = camera_pdf;
-    qs.delta = false;
-    float saved_before = 0.0f;
-    if (s >= 2) {
-      PathVertex& before = y[s - 2];
-      saved_before = before.pdf_reverse;
-      before.pdf_reverse = density(qs, before);
-    }
     // 1 / w - 1 with the camera's density at h = 1: every term holds h^2 once.
-    const float w = bidirectional_weight(y.first(s), std::span<const PathVertex>(&eye, 1), true);
+    const float w = join_weight(y.first(s), std::span<PathVertex>(&eye, 1),
+                                {camera_pdf, s >= 2 ? density(qs, y[s - 2]) : 0.0f, 0.0f, 0.0f});
     const float filter_weight = 1.0f / w - 1.0f;
-    qs.pdf_reverse = saved_qs;
-    qs.delta = saved_delta;
-    if (s >= 2) y[s - 2].pdf_reverse = saved_before;
     splat(to_camera->film, value * to_camera->importance, filter_weight);
   }
 
@@ -485,18 +504,9 @@ class BidirectionalPathTracer {
       light.sphere = emitter.sphere;
       light.pdf_forward = emission_.sphere_density(choice.index);
     }
-    PathVertex& before = z[t - 2];
-    const float saved_pt = pt.pdf_reverse, saved_before = before.pdf_reverse;
-    const bool saved_delta = pt.delta;
-    pt.pdf_reverse = density(light, pt);
-    before.pdf_reverse = density(pt, before);
-    pt.delta = false;
-    light.pdf_reverse = density(pt, light);
-    const float weight = bidirectional_weight(std::span<const PathVertex>(&light, 1), z.first(t),
-                                              light_tracing_counts_);
-    pt.pdf_reverse = saved_pt;
-    before.pdf_reverse = saved_before;
-    pt.delta = saved_delta;
+    const float weight =
+        join_weight(std::span<PathVertex>(&light, 1), z.first(t),
+                    {density(pt, light), 0.0f, density(light, pt), density(pt, z[t - 2])});
     return value * weight;
   }
 
@@ -516,23 +526,9 @@ class BidirectionalPathTracer {
     const Color value =
         qs.beta * diffuse_value(qs, direction) * geometry * diffuse_value(pt, -direction) * pt.beta;
     if (value == Color(0.0f) || !visible(qs, pt, counters)) return Color(0.0f);
-    PathVertex& qs_before = y[s - 2];
-    PathVertex& pt_before = z[t - 2];
-    const float saved[4] = {qs.pdf_reverse, pt.pdf_reverse, qs_before.pdf_reverse,
-                            pt_before.pdf_reverse};
-    const bool saved_delta[2] = {qs.delta, pt.delta};
-    pt.pdf_reverse = density(qs, pt);
-    pt_before.pdf_reverse = density(pt, pt_before);
-    qs.pdf_reverse = density(pt, qs);
-    qs_before.pdf_reverse = density(qs, qs_before);
-    qs.delta = pt.delta = false;
-    const float weight = bidirectional_weight(y.first(s), z.first(t), light_tracing_counts_);
-    qs.pdf_reverse = saved[0];
-    pt.pdf_reverse = saved[1];
-    qs_before.pdf_reverse = saved[2];
-    pt_before.pdf_reverse = saved[3];
-    qs.delta = saved_delta[0];
-    pt.delta = saved_delta[1];
+    const float weight = join_weight(
+        y.first(s), z.first(t),
+        {density(pt, qs), density(qs, y[s - 2]), density(qs, pt), density(pt, z[t - 2])});
     return value * weight;
   }
 
