@@ -2,7 +2,17 @@
 # installed glint finds exactly what the source tree found.
 include(CMakeFindDependencyMacro)
 include(GNUInstallDirs)
-find_dependency(glm)
+# In an installed glint's find_package, a missing GLM makes glint not found, as find_dependency
+# does. In the source tree find_dependency would return from this file quietly and the build
+# would fail later on an unknown glm::glm target, so the source tree says what is missing.
+if(DEFINED CMAKE_FIND_PACKAGE_NAME)
+  find_dependency(glm)
+else()
+  find_package(glm QUIET)
+  if(NOT TARGET glm::glm)
+    message(FATAL_ERROR "glint needs GLM's CMake package (Debian: apt install libglm-dev)")
+  endif()
+endif()
 find_dependency(Threads)
 
 # Debian's libstb-dev ships stb_image_write.h and a shared libstb with its implementation.
