@@ -42,6 +42,10 @@ inline constexpr std::string_view kVariantDescription =
     : std::is_same_v<typename Variant::estimator, glint::BidirectionalPathTracing>
         ? "Renders SCENE (a glint scene file) by bidirectional path tracing (paths from the "
           "camera and from the lights, joined in every way) and writes an image."
+    : std::is_same_v<typename Variant::estimator, glint::VertexConnectionMerging>
+        ? "Renders SCENE (a glint scene file) by vertex connection and merging (paths from the "
+          "camera and from the lights, joined in every way and merged where they meet) and "
+          "writes an image."
         : "Renders SCENE (a glint scene file) by light tracing (paths from the lights, connected "
           "to the camera) and writes an image.";
 

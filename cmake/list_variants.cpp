@@ -26,6 +26,8 @@ const char* execution_template() {
     return "glint::LightTracingExecution";
   else if constexpr (std::is_same_v<E, glint::BidirectionalExecution<V>>)
     return "glint::BidirectionalExecution";
+  else if constexpr (std::is_same_v<E, glint::VertexMergingExecution<V>>)
+    return "glint::VertexMergingExecution";
   else
     static_assert(std::is_same_v<E, glint::ScalarExecution<V>>,
                   "an execution model list_variants.cpp does not know: name it here");

@@ -3,8 +3,8 @@
 // variant but the three built on `fast` changes exactly one policy from it (an ablation), so
 // comparing it with `report` measures that one feature. `fast` combines the policies that give
 // the best image per second; `fast_no_emitter_sampling` takes one of them away again,
-// `light_tracing` replaces its estimator (camera paths) by paths from the lights, and
-// `bidirectional` by both, joined.
+// `light_tracing` replaces its estimator (camera paths) by paths from the lights,
+// `bidirectional` by both, joined, and `vcm` by both, joined and merged.
 //
 // Each variant is a type derived from its Config that carries its name, a line saying what it
 // changes and whether it converges to the report's image (as pbrt-v4's types carry Name()).
@@ -118,6 +118,14 @@ struct bidirectional : fast::with_estimator<BidirectionalPathTracing> {
       "lights, and what mirrors and glass show",
       kDifferentImage};
 };
+/// Bidirectional path tracing with vertex merging: `bidirectional` plus the light of every light
+/// path of the sample index near each camera vertex, which also renders a point light's caustic
+/// seen in a mirror or through glass. Consistent: its merging radius shrinks with the samples.
+struct vcm : fast::with_estimator<VertexConnectionMerging> {
+  static constexpr VariantInfo info{
+      "vcm", "`bidirectional` with vertex merging: also caustics seen in mirrors and through glass",
+      kDifferentImage};
+};
 struct emitter_sampling : report::with_light_sampling<EmitterSampling<PowerHeuristic>> {
   static constexpr VariantInfo info{
       "emitter_sampling", "emissive spheres sampled at diffuse hits, MIS with the power heuristic",
@@ -128,7 +136,7 @@ struct emitter_sampling : report::with_light_sampling<EmitterSampling<PowerHeuri
 using all = std::tuple<report, fast, no_fresnel, schlick_fresnel, no_antialiasing, box_antialiasing,
                        tent_antialiasing, cosine_hemisphere, stochastic_material, russian_roulette,
                        uniform_shading, stratified_sampler, sobol_sampler, emitter_sampling,
-                       fast_no_emitter_sampling, light_tracing, bidirectional>;
+                       fast_no_emitter_sampling, light_tracing, bidirectional, vcm>;
 
 /// The variant glint-render (without a suffix) is built with.
 using default_variant = fast;

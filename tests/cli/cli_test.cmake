@@ -356,6 +356,25 @@ if(TARGET glint-render-bidirectional)
   endif()
 endif()
 
+# Vertex connection and merging (glint-render-vcm): the same cases, its light phase included in
+# the checkpointed passes.
+if(TARGET glint-render-vcm)
+  glint_cli_test(vcm-help PROGRAM glint-render-vcm STATUS 0
+                 STDOUT "by vertex connection and merging" ARGS --help)
+  glint_cli_test(vcm-background PROGRAM glint-render-vcm STATUS 0
+                 OUTPUT out.png EXPECT_OUTPUT ARGS ${glint_cli_scenes}/sky.scene -o out.png)
+  glint_cli_test(vcm-pixel-centres PROGRAM glint-render-vcm STATUS 0
+                 OUTPUT out.png EXPECT_OUTPUT ARGS ${glint_cli_scenes}/pixel-centres.scene -o out.png)
+  if(GLINT_BASH)
+    add_test(NAME "cli: vcm-checkpoint-resume"
+             COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash checkpoint_resume
+                     $<TARGET_FILE:glint-render-vcm> ${glint_cli_scenes}/tiny.scene
+                     ${PROJECT_BINARY_DIR}/cli-test/vcm-checkpoint-resume)
+    set_tests_properties("cli: vcm-checkpoint-resume" PROPERTIES LABELS "cli;long"
+                         ENVIRONMENT GLINT_LONG_RENDER_SIZE=80x60)
+  endif()
+endif()
+
 # The execution model (tests/cli/execution_model_test.bash): --scalar renders a finite image of
 # the right size; the default and --scalar agree statistically; a checkpoint of either model
 # resumes with either to the uninterrupted bytes; a variant without the wavefront renderer

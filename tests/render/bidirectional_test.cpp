@@ -75,6 +75,20 @@ double strategy_density(const DensityPath& p, std::size_t s, bool light_tracing_
   return density;
 }
 
+/// Merging at x_j's density written out: the light side's densities of x_0 .. x_j, the camera
+/// side's of x_j .. x_k, and eta; zero where x_j scatters through a delta (no diffuse lobe meets
+/// the light there) or is an end of the path.
+double merge_density(const DensityPath& p, std::size_t j, double eta) {
+  const std::size_t k = p.light.size() - 1;
+  if (j == 0 || j >= k || p.delta[j] || eta == 0.0) return 0.0;
+  double density = eta;
+  for (std::size_t i = 0; i <= j; ++i)
+    density *= i > 0 && p.delta[i - 1] ? 1.0 : double(p.light[i]);
+  for (std::size_t i = j; i <= k; ++i)
+    density *= i < k && p.delta[i + 1] ? 1.0 : double(p.camera[i]);
+  return density;
+}
+
 /// Strategy s's subpaths as the estimator holds them at its join: the light subpath x_0 ..
 /// x_{s-1} and the camera subpath x_k .. x_s, each vertex's forward density its own side's
 /// (zero behind a delta), its reverse density the other side's, the joined vertices' deltas
@@ -105,13 +119,17 @@ void subpaths(const DensityPath& p, std::size_t s, std::vector<PathVertex>& ligh
   camera.back().delta = false;
 }
 
-TEST_CASE("bidirectional: each strategy's weight is its share of an explicit sum over all",
-          "[render][light]") {
+TEST_CASE(
+    "bidirectional: each strategy's weight, merges included, is its share of an explicit "
+    "sum over all",
+    "[render][light]") {
   std::mt19937 random(12345);
   std::uniform_real_distribution<float> log_density(-2.0f, 2.0f);
   std::bernoulli_distribution is_delta(0.25), is_point(0.3);
-  int checked = 0;
+  int checked = 0, merges_checked = 0;
   for (int trial = 0; trial < 3000; ++trial) {
+    // Half the paths without merging (bidirectional path tracing), half with.
+    const float eta = trial % 2 ? 0.0f : std::exp(2.0f * log_density(random));
     const std::size_t k = 1 + std::size_t(trial % 8);
     DensityPath p;
     p.point_light = is_point(random);
@@ -127,6 +145,10 @@ TEST_CASE("bidirectional: each strategy's weight is its share of an explicit sum
         const double d = strategy_density(p, s, light_tracing_counts);
         total += d * d;
       }
+      for (std::size_t j = 0; j <= k; ++j) {
+        const double d = merge_density(p, j, eta);
+        total += d * d;
+      }
       if (total == 0.0) continue;  // no strategy makes the path
       double weights = 0.0;
       std::vector<PathVertex> light, camera;
@@ -134,17 +156,34 @@ TEST_CASE("bidirectional: each strategy's weight is its share of an explicit sum
         const double d = strategy_density(p, s, light_tracing_counts);
         if (d == 0.0) continue;
         subpaths(p, s, light, camera);
-        const double weight = glint::bidirectional_weight(light, camera, light_tracing_counts);
+        const double weight =
+            glint::bidirectional_weight(light, camera, {light_tracing_counts, eta});
         INFO("path of " << k + 1 << " vertices, strategy s = " << s << ", light tracing "
                         << light_tracing_counts);
         CHECK(weight == Approx(d * d / total).epsilon(1e-4));
         weights += weight;
         ++checked;
       }
+      // Merging at x_j: the light subpath up to x_{j-1}, which keeps its own delta (its next
+      // vertex, the merged one, is on the path), the camera subpath down to x_j, whose reverse
+      // density is the light side's.
+      for (std::size_t j = 1; j < k; ++j) {
+        const double d = merge_density(p, j, eta);
+        if (d == 0.0) continue;
+        subpaths(p, j, light, camera);
+        light.back().delta = p.delta[j - 1];
+        const double weight = glint::merge_weight(light, camera, {light_tracing_counts, eta});
+        INFO("path of " << k + 1 << " vertices, merge at " << j << ", light tracing "
+                        << light_tracing_counts);
+        CHECK(weight == Approx(d * d / total).epsilon(1e-4));
+        weights += weight;
+        ++merges_checked;
+      }
       CHECK(weights == Approx(1.0).epsilon(1e-4));
     }
   }
   CHECK(checked > 10000);
+  CHECK(merges_checked > 3000);
 }
 
 // ---- whole renders -------------------------------------------------------------------------

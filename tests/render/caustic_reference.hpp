@@ -150,8 +150,9 @@ class FloorIrradiance {
 };
 
 /// The expected mean radiance of each block of kCaustic's image (and of the whole image) rendered
-/// at the block statistics' size.
-inline std::array<double, glint_test::kBlocks + 1> expected_blocks(const glint::Scene& scene) {
+/// at the block statistics' size, with the Gaussian pixel filter or through pixel centres.
+inline std::array<double, glint_test::kBlocks + 1> expected_blocks(const glint::Scene& scene,
+                                                                   bool pixel_centres = false) {
   // The expected radiance of each pixel: albedo / pi x irradiance, averaged over the pixel
   // filter (the normal density of sigma 0.5 pixels, to the 5.77 sigmas its offsets reach) by a
   // 48 x 48 quadrature of offsets.
@@ -159,8 +160,8 @@ inline std::array<double, glint_test::kBlocks + 1> expected_blocks(const glint::
   const glint::Camera camera(scene.camera(), glint_test::kBlockImageSize,
                              glint_test::kBlockImageSize);
   std::array<double, glint_test::kBlocks + 1> expected{};
-  constexpr int kSteps = 48;
-  const double kReach = glint::GaussianAntialiasing::kLargestRadius;  // sigmas
+  const int kSteps = pixel_centres ? 1 : 48;
+  const double kReach = pixel_centres ? 0.0 : glint::GaussianAntialiasing::kLargestRadius;
   double weights = 0.0;
   for (int i = 0; i < kSteps; ++i)
     for (int j = 0; j < kSteps; ++j) {
@@ -222,11 +223,11 @@ inline glint_test::ComparisonFamily compare(
 /// fan's values; and that the same comparison with the fan's values 5% higher is rejected, so
 /// that the test has the power to see a bias of that size. `name` names the estimator.
 template <typename R>
-void check_caustic(std::uint64_t first_seed, const std::string& name) {
+void check_caustic(std::uint64_t first_seed, const std::string& name, bool pixel_centres = false) {
   const glint::Scene scene = glint::Scene::build(glint::read_scene_text(kCaustic, "caustic"));
   const glint_test::BlockSamples rendered =
       glint_test::render_blocks<R>(scene, first_seed, glint::RenderSettings::from(scene));
-  const auto expected = expected_blocks(scene);
+  const auto expected = expected_blocks(scene, pixel_centres);
   compare(rendered, expected, 1.0, name).check();
   CHECK_FALSE(compare(rendered, expected, 1.05, name).rejected().empty());
 }

@@ -24,8 +24,10 @@ template <typename C>
 class ScalarExecution;  // render/scalar_execution.hpp
 template <typename C>
 class LightTracingExecution;  // render/light_tracing_execution.hpp
-template <typename C>
+template <typename C, bool Merging = false>
 class BidirectionalExecution;  // render/bidirectional_execution.hpp
+template <typename C>
+class VertexMergingExecution;  // render/bidirectional_execution.hpp
 
 /// The report's renderer: camera paths that, at every hit, follow each lobe with a non-zero
 /// coefficient, weighted by its coefficient. Diffuse gets direct light plus one random bounce;
@@ -70,8 +72,20 @@ struct BidirectionalPathTracing {
   using execution = BidirectionalExecution<C>;
 };
 
+/// Bidirectional path tracing with vertex merging (Georgiev et al. 2012): the light subpaths of
+/// each sample index traced first for the whole image, and every camera vertex merging with the
+/// light of the light vertices near it (photon mapping with a shrinking radius), besides every
+/// join, all under one power heuristic. Merging finds what no join can: a point light's caustic
+/// seen in a mirror or through glass. Consistent (its bias vanishes as the samples grow) rather
+/// than unbiased. Any background.
+struct VertexConnectionMerging {
+  static constexpr std::string_view name = "vertex connection and merging";
+  template <typename C>
+  using execution = VertexMergingExecution<C>;
+};
+
 static_assert(Estimator<TreePathTracing> && Estimator<PathTracing> && Estimator<LightTracing> &&
-              Estimator<BidirectionalPathTracing>);
+              Estimator<BidirectionalPathTracing> && Estimator<VertexConnectionMerging>);
 
 /// Whether estimator policy E follows camera paths (a PathTracer renders them, one at a time or
 /// in a wavefront), rather than paths from the lights.

@@ -10,11 +10,25 @@
 // own (LightTracingExecution::kLightStream), both keyed by (pixel, sample index, seed), never by
 // thread; splats add in fixed point. So the image is the same bits for any thread count, tile
 // order or pass split.
+//
+// With merging (vertex connection and merging, Georgiev et al. 2012), the light subpaths of a
+// sample index are traced first, for every pixel at once (a light phase, before the camera
+// subpaths of that index), and kept in a LightPathStore (render/light_path_store.hpp): each
+// camera vertex then merges with the light of every light vertex within the merging radius,
+// besides every join with its own pixel's light subpath, all under one power heuristic. The
+// radius shrinks with the sample index i as r_1 / i^(1/8) (the progressive radius of
+// Knaus and Zwicker 2011 with alpha = 3/4), so the merging's bias vanishes as samples grow; r_1 is
+// kMergeRadiusPixels pixels wide at the median distance of what the camera sees. Each light path
+// is keyed as the bidirectional estimator keys it, and the merges of a camera vertex are added in
+// the grid's fixed order, so the image is again the same bits for any threads, tiles and passes.
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <system_error>
+#include <thread>
 #include <vector>
 
 #include "glint/config.hpp"
@@ -23,6 +37,7 @@
 #include "glint/render/camera.hpp"
 #include "glint/render/estimators/bidirectional.hpp"
 #include "glint/render/film_splatter.hpp"
+#include "glint/render/light_path_store.hpp"
 #include "glint/render/light_tracing_execution.hpp"
 #include "glint/render/render_settings.hpp"
 #include "glint/render/tile_grid.hpp"
@@ -30,21 +45,33 @@
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
-template <typename C>
+/// Bidirectional path tracing, and with `Merging` vertex connection and merging.
+template <typename C, bool Merging>
 class BidirectionalExecution {
   static_assert(RenderConfig<C>);
 
  public:
-  static constexpr const char* kName = "bidirectional";
+  static constexpr const char* kName = Merging ? "vertex connection and merging" : "bidirectional";
   /// Its joins to the camera land on any pixel: the sums it adds to have a splat layer.
   static constexpr bool kSplats = true;
+  /// With merging, each sample index begins with its light phase (prepare_sample): the renderer
+  /// renders one sample index at a time.
+  static constexpr bool kLightPhase = Merging;
+  /// The first merging radius in pixels, at the median distance of what the camera sees.
+  static constexpr float kMergeRadiusPixels = 1.5f;
 
-  BidirectionalExecution(const Scene& scene, const RenderSettings& settings)
+  /// `merge_radius_pixels`: the first merging radius, in pixels at the median distance of what
+  /// the camera sees (merging only).
+  BidirectionalExecution(const Scene& scene, const RenderSettings& settings,
+                         float merge_radius_pixels = kMergeRadiusPixels)
       : camera_(scene.camera(), settings.width, settings.height),
         splatter_(settings),
         tracer_(scene, camera_, settings.max_depth, float(settings.width) * float(settings.height),
                 splatter_.has_area()),
-        settings_(settings) {}
+        settings_(settings),
+        light_paths_(Merging ? std::size_t(settings.width) * std::size_t(settings.height) : 0),
+        first_merge_radius_(
+            Merging ? first_merge_radius(scene, camera_, settings, merge_radius_pixels) : 0.0f) {}
   BidirectionalExecution(const BidirectionalExecution&) = delete;
   BidirectionalExecution& operator=(const BidirectionalExecution&) = delete;
 
@@ -55,6 +82,48 @@ class BidirectionalExecution {
           light(std::size_t(execution.tracer_.subpath_capacity())) {}
     std::vector<PathVertex> camera, light;
   };
+
+  /// The light phase of sample index `sample` (merging only): the light subpaths of that index for
+  /// every pixel, on `threads` threads (fewer where no more can be started), and the grid of
+  /// their vertices for the sample's merging radius. The rays go to `counters`.
+  void prepare_sample(int sample, int threads, TraceCounters& counters) requires Merging {
+    const float radius =
+        first_merge_radius_ / std::sqrt(std::sqrt(std::sqrt(float(sample) + 1.0f)));
+    merge_density_ = kPi * radius * radius * float(light_paths_.path_count());
+    std::atomic<std::size_t> next_chunk{0};
+    std::vector<TraceCounters> thread_counters(std::size_t(std::max(threads, 1)));
+    const auto work = [&](TraceCounters& mine) {
+      typename C::sampler sampler;
+      std::vector<PathVertex> scratch(std::size_t(tracer_.subpath_capacity()));
+      for (std::size_t chunk = next_chunk.fetch_add(1, std::memory_order_relaxed);
+           chunk < light_paths_.chunk_count();
+           chunk = next_chunk.fetch_add(1, std::memory_order_relaxed))
+        light_paths_.fill_chunk(chunk, scratch, [&](std::size_t path, std::span<PathVertex> v) {
+          const std::size_t width = std::size_t(settings_.width);
+          sampler.start(PixelSample{std::uint32_t(path % width), std::uint32_t(path / width),
+                                    std::uint32_t(sample),
+                                    std::uint32_t(settings_.samples_per_pixel),
+                                    settings_.seed ^ LightTracingExecution<C>::kLightStream});
+          return tracer_.light_subpath(sampler, v, mine);
+        });
+    };
+    {
+      std::vector<std::jthread> helpers;
+      for (std::size_t t = 1; t < thread_counters.size(); ++t) {
+        try {
+          helpers.emplace_back(work, std::ref(thread_counters[t]));
+        } catch (const std::system_error&) {
+          break;  // the threads that started, and this one, take every chunk
+        }
+      }
+      work(thread_counters[0]);
+    }
+    for (const TraceCounters& c : thread_counters) {
+      counters.rays += c.rays;
+      counters.invalid_samples += c.invalid_samples;
+    }
+    light_paths_.build_grid(radius);
+  }
 
   void render_tile(ThreadState& state, const Tile& tile, int first, int last, PixelSums& sums,
                    TraceCounters& counters, std::atomic<std::uint64_t>& progress,
@@ -74,9 +143,12 @@ class BidirectionalExecution {
           const PixelSample key{std::uint32_t(x), std::uint32_t(y), std::uint32_t(s),
                                 std::uint32_t(settings_.samples_per_pixel), settings_.seed};
           camera_sampler.start(key);
-          PixelSample light_key = key;
-          light_key.seed ^= LightTracingExecution<C>::kLightStream;
-          light_sampler.start(light_key);
+          if constexpr (!Merging) {
+            // With merging, the light phase has traced this pixel's light subpath.
+            PixelSample light_key = key;
+            light_key.seed ^= LightTracingExecution<C>::kLightStream;
+            light_sampler.start(light_key);
+          }
           Vec2 film(float(x) + 0.5f, float(y) + 0.5f);
           float filter_density = 0.0f;
           if constexpr (C::antialiasing::enabled) {
@@ -85,10 +157,16 @@ class BidirectionalExecution {
             film += offset;
             filter_density = C::antialiasing::density(offset, settings_.antialias_sigma);
           }
-          const Color sample =
-              tracer_.sample(camera_.ray_through(film), filter_density, camera_sampler,
-                             light_sampler, std::span<PathVertex>(state.camera),
-                             std::span<PathVertex>(state.light), splat, counters);
+          Color sample;
+          if constexpr (Merging) {
+            sample = merged_sample(camera_.ray_through(film), filter_density, camera_sampler,
+                                   std::size_t(y) * std::size_t(settings_.width) + std::size_t(x),
+                                   state, splat, counters);
+          } else {
+            sample = tracer_.sample(camera_.ray_through(film), filter_density, camera_sampler,
+                                    light_sampler, std::span<PathVertex>(state.camera),
+                                    std::span<PathVertex>(state.light), splat, counters);
+          }
           if (std::isfinite(sample.x) && std::isfinite(sample.y) && std::isfinite(sample.z))
             sum += ColorSum(sample);
           else
@@ -101,10 +179,66 @@ class BidirectionalExecution {
   }
 
  private:
+  /// A camera subpath through the pixel whose light subpath is `path` of the light phase: every
+  /// join with that light subpath, and every merge of its vertices with the light phase's.
+  template <typename Splat>
+  Color merged_sample(const Ray& ray, float filter_density, typename C::sampler& camera_sampler,
+                      std::size_t path, ThreadState& state, Splat& splat,
+                      TraceCounters& counters) const {
+    Color radiance(0.0f);
+    const std::size_t t =
+        tracer_.camera_subpath(ray, filter_density, camera_sampler,
+                               std::span<PathVertex>(state.camera), radiance, counters);
+    const std::span<const PathVertex> z(state.camera.data(), t);
+    radiance += tracer_.connect(z, light_paths_.path(path), camera_sampler, splat, merge_density_,
+                                counters);
+    for (std::size_t end = 2; end <= t; ++end) {
+      const PathVertex& vertex = z[end - 1];
+      if (vertex.kind != PathVertex::Kind::surface || !vertex.joinable()) continue;
+      light_paths_.for_each_near(vertex.point, [&](const LightPathStore::Entry& entry) {
+        radiance += tracer_.merge(z.first(end), light_paths_.path(entry.path), entry.vertex,
+                                  merge_density_);
+      });
+    }
+    return radiance;
+  }
+
+  /// `pixels` pixels at the median distance of the first hits of a grid of rays
+  /// through the image; one pixel at distance one where they hit nothing.
+  static float first_merge_radius(const Scene& scene, const Camera& camera,
+                                  const RenderSettings& settings, float pixels) {
+    constexpr int kGrid = 16;
+    std::vector<float> distances;
+    for (int j = 0; j < kGrid; ++j)
+      for (int i = 0; i < kGrid; ++i) {
+        const Vec2 film((float(i) + 0.5f) * float(settings.width) / float(kGrid),
+                        (float(j) + 0.5f) * float(settings.height) / float(kGrid));
+        const Ray ray = camera.ray_through(film);
+        if (const std::optional<SphereHit> hit = scene.closest_hit(ray))
+          distances.push_back(hit->t);
+      }
+    if (distances.empty()) return pixels * camera.pixel_size();
+    const auto middle = distances.begin() + std::ptrdiff_t(distances.size() / 2);
+    std::nth_element(distances.begin(), middle, distances.end());
+    return pixels * camera.pixel_size() * *middle;
+  }
+
   Camera camera_;
   FilmSplatter<C> splatter_;
   BidirectionalPathTracer<C> tracer_;  // holds a reference to camera_, declared before it
   RenderSettings settings_;
+  LightPathStore light_paths_;  ///< the light phase's paths (merging only)
+  float first_merge_radius_;    ///< the merging radius of sample index 0
+  float merge_density_ = 0.0f;  ///< eta of the sample index being rendered
+};
+
+/// Vertex connection and merging: the bidirectional execution with a light phase per sample
+/// index and merges at every camera vertex (a class of its own, which a build can instantiate
+/// explicitly).
+template <typename C>
+class VertexMergingExecution : public BidirectionalExecution<C, true> {
+ public:
+  using BidirectionalExecution<C, true>::BidirectionalExecution;
 };
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -69,6 +69,8 @@ class Camera {
   }
 
   const Vec3& position() const { return position_; }
+  /// The size of a pixel on the plane at distance one in the viewing direction.
+  float pixel_size() const { return pixel_scale_; }
 
   /// Density per unit solid angle of a ray in unit `direction` when its film point is drawn
   /// with density one per pixel area: 1 / (p^2 cos^3(theta)), p the size of a pixel on the plane

@@ -57,6 +57,14 @@ inline constexpr bool kExecutionSplats = requires {
   requires E::kSplats;
 };
 
+/// Whether execution model E begins each sample index with a light phase shared by every pixel
+/// (E::prepare_sample, as vertex merging's light paths): it is then rendered one sample index
+/// at a time, each index's tiles after its light phase.
+template <class E>
+inline constexpr bool kExecutionHasLightPhase = requires {
+  requires E::kLightPhase;
+};
+
 struct RenderResult {
   /// The mean of the samples of the completed passes; black when no pass completed.
   Film film;
@@ -224,8 +232,9 @@ class Renderer {
   /// sums built piece by piece, in any order and by any number of calls (in other processes
   /// too), are render()'s bit for bit as long as each pixel's samples come in index order.
   /// The result counts what this call rendered: its samples, rays, invalid samples, threads
-  /// and time. Throws as render() does, before any work is asked for, and SettingsError for
-  /// sums of another size.
+  /// and time. Throws as render() does, before any work is asked for, SettingsError for sums
+  /// of another size, and SettingsError for an execution model with a light phase (vertex
+  /// merging), whose tiles need the light paths of the whole image.
   template <TileWorkSource Source>
   static RenderStats render_tiles(const Scene& scene, const RenderSettings& settings,
                                   PixelSums& sums, Source& source) {
@@ -432,13 +441,23 @@ RenderResult Renderer<C, E>::render(const Scene& scene, const RenderSettings& se
       from.sums ? *from.sums : PixelSums(settings.width, settings.height, kExecutionSplats<E>);
   RenderResult result{
       {}, {}, first_pass ? ends[first_pass - 1] : 0, int(first_pass), int(ends.size()), {}};
-  const E execution(scene, settings);
+  E execution(scene, settings);
 
   const TileGrid grid(settings);
   const int thread_count = threads_for(settings, grid.count);
   const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
 
-  Schedule schedule(grid.count, ends, first_pass);
+  // The steps the workers are released for: the passes, or with a light phase each sample index.
+  std::vector<int> steps = ends;
+  if constexpr (kExecutionHasLightPhase<E>) {
+    steps.resize(std::size_t(settings.samples_per_pixel));
+    for (std::size_t i = 0; i < steps.size(); ++i)
+      steps[i] = int(i) + 1;
+  }
+  std::size_t step =
+      kExecutionHasLightPhase<E> ? std::size_t(result.samples_per_pixel) : first_pass;
+  Schedule schedule(grid.count, steps, step);
+  TraceCounters light_phase_counters;
   std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
   std::vector<typename E::ThreadState> states = thread_states(execution, thread_count);
   {
@@ -463,9 +482,14 @@ RenderResult Renderer<C, E>::render(const Scene& scene, const RenderSettings& se
     };
     for (std::size_t pass = first_pass; pass < ends.size(); ++pass) {
       if (control.stop && control.stop->load(std::memory_order_relaxed)) break;
-      schedule.release(pass);
-      while (!schedule.wait_for_pass(pass, progress_interval))
-        report(false);
+      for (; step < steps.size() && steps[step] <= ends[pass]; ++step) {
+        // The workers wait for the step's release: the light phase has the machine to itself.
+        if constexpr (kExecutionHasLightPhase<E>)
+          execution.prepare_sample(steps[step] - 1, thread_count, light_phase_counters);
+        schedule.release(step);
+        while (!schedule.wait_for_pass(step, progress_interval))
+          report(false);
+      }
       result.passes_done = int(pass) + 1;
       result.samples_per_pixel = ends[pass];
       if (pass + 1 < ends.size()) report(false);
@@ -489,6 +513,8 @@ RenderResult Renderer<C, E>::render(const Scene& scene, const RenderSettings& se
     result.stats.rays += c.counters.rays;
     result.stats.invalid_samples += c.counters.invalid_samples;
   }
+  result.stats.rays += light_phase_counters.rays;
+  result.stats.invalid_samples += light_phase_counters.invalid_samples;
   result.stats.samples = pixels * std::uint64_t(result.samples_per_pixel);
   result.stats.threads = thread_count;
   result.stats.seconds = elapsed();
@@ -508,6 +534,10 @@ RenderStats Renderer<C, E>::render_tiles(const Scene& scene, const RenderSetting
   if (sums.has_splats() != kExecutionSplats<E>)
     throw SettingsError(sums.has_splats() ? "glint: sums with splats for a renderer that makes none"
                                           : "glint: sums without the splats this renderer makes");
+  if constexpr (kExecutionHasLightPhase<E>)
+    throw SettingsError(std::string("glint: ") + E::kName +
+                        " renders only whole renders (render()): its light phase is shared by "
+                        "every tile of a sample index");
   const auto start = std::chrono::steady_clock::now();
   const E execution(scene, settings);
   const TileGrid grid(settings);

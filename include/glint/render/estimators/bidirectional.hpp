@@ -101,34 +101,128 @@ inline float nonzero(float pdf) {
 
 }  // namespace detail
 
-/// The power heuristic's weight of strategy (s, t) for the full path made of light[0, s) and
-/// camera[0, t) (light[0] on a light, camera[0] the camera), whose vertices' pdf_forward and
-/// pdf_reverse are the densities of both directions along this full path: the joined vertices'
-/// reverse densities already set for the join, and their delta flags cleared. Strategies with
-/// t = 1 (joins to the camera) count only where `light_tracing_counts`. The weight is
-/// 1 / (1 + sum over the other strategies of (their density / this one's)^2), the ratios built
-/// vertex by vertex from the ends of the join outwards. Exposed for tests, which hold it against
-/// an explicit sum over all strategies.
-inline float bidirectional_weight(std::span<const PathVertex> light,
-                                  std::span<const PathVertex> camera, bool light_tracing_counts) {
+/// The reverse densities that a join sets on the ends of the subpaths it joins: of the joined
+/// vertices (each as the other subpath would have made it) and of the vertices before them (made
+/// through the joined ones). Read in place of the vertices' own pdf_reverse; zero where the
+/// subpath has no such vertex.
+struct JoinDensities {
+  float light_end = 0.0f, light_before = 0.0f, camera_end = 0.0f, camera_before = 0.0f;
+};
+
+/// How the strategies that compete for a path are counted.
+struct StrategyRules {
+  /// Whether the pixel filter has an area, so that joins to the camera (t = 1) land on pixels.
+  bool light_tracing_counts = true;
+  /// Vertex merging's density factor: pi r^2 x the light paths a camera vertex may merge with
+  /// (Georgiev et al. 2012's eta). Zero: no merging strategy (bidirectional path tracing).
+  float merge_density = 0.0f;
+};
+
+namespace detail {
+
+/// The sum over the strategies other than the join of light[0, s) and camera[0, t) of (their
+/// density / the join's)^2: the power heuristic's weight of the join is 1 / (1 + sum). The join's
+/// reverse densities come from `join`; the camera end's delta is read as cleared, and so is the
+/// light end's where the light end is joined (`light_end_joined`; a merge takes the light subpath
+/// up to the vertex before the merged one, whose own scattering is on the path). The ratios are
+/// built vertex by vertex from the ends outwards: moving vertex v to the other side multiplies
+/// by (its other side's density / its own side's); merging at v, by eta x its other side's
+/// density, once v is on the side it was made by.
+inline float other_strategies(std::span<const PathVertex> light, std::span<const PathVertex> camera,
+                              const JoinDensities& join, const StrategyRules& rules,
+                              bool light_end_joined) {
   const std::size_t s = light.size(), t = camera.size();
+  const float eta = rules.merge_density;
+  const auto camera_reverse = [&](std::size_t i) {
+    return i + 1 == t ? join.camera_end : i + 2 == t ? join.camera_before : camera[i].pdf_reverse;
+  };
+  const auto light_reverse = [&](std::size_t i) {
+    return i + 1 == s ? join.light_end : i + 2 == s ? join.light_before : light[i].pdf_reverse;
+  };
+  const auto camera_delta = [&](std::size_t i) { return i + 1 < t && camera[i].delta; };
+  const auto light_delta = [&](std::size_t i) {
+    return (i + 1 < s || !light_end_joined) && light[i].delta;
+  };
   float sum = 0.0f;
   // Fewer camera vertices: camera[i] made by the light side. Strategy (s + t - i, i).
   float ratio = 1.0f;
   for (std::size_t i = t - 1; i > 0; --i) {
-    ratio *= detail::nonzero(camera[i].pdf_reverse) / detail::nonzero(camera[i].pdf_forward);
-    const bool joinable = !camera[i].delta && !camera[i - 1].delta;
-    if (joinable && (i > 1 || light_tracing_counts)) sum += ratio * ratio;
+    const float reverse = nonzero(camera_reverse(i));
+    // Merging at camera[i]: not at the path's light end (s = 0: camera[t - 1] is on a lamp).
+    if (eta > 0.0f && camera[i].kind == PathVertex::Kind::surface && !camera_delta(i) &&
+        (s > 0 || i + 1 < t)) {
+      const float merge = ratio * eta * reverse;
+      sum += merge * merge;
+    }
+    ratio *= reverse / nonzero(camera[i].pdf_forward);
+    const bool joinable = !camera_delta(i) && !camera_delta(i - 1);
+    if (joinable && (i > 1 || rules.light_tracing_counts)) sum += ratio * ratio;
   }
   // Fewer light vertices: light[i] made by the camera side. Strategy (i, s + t - i).
   ratio = 1.0f;
   for (std::size_t i = s; i-- > 0;) {
-    ratio *= detail::nonzero(light[i].pdf_reverse) / detail::nonzero(light[i].pdf_forward);
+    const float reverse = nonzero(light_reverse(i));
+    // Merging at light[i]: not at the light's own point.
+    if (eta > 0.0f && i > 0 && light[i].kind == PathVertex::Kind::surface && !light_delta(i)) {
+      const float merge = ratio * eta * reverse;
+      sum += merge * merge;
+    }
+    ratio *= reverse / nonzero(light[i].pdf_forward);
     const bool before_delta =
-        i > 0 ? light[i - 1].delta : light[0].kind == PathVertex::Kind::point_light;
-    if (!light[i].delta && !before_delta) sum += ratio * ratio;
+        i > 0 ? light_delta(i - 1) : light[0].kind == PathVertex::Kind::point_light;
+    if (!light_delta(i) && !before_delta) sum += ratio * ratio;
   }
-  return 1.0f / (1.0f + sum);
+  return sum;
+}
+
+/// The power heuristic's weight of the join of light[0, s) and camera[0, t) with `join`'s
+/// reverse densities.
+inline float join_weight(std::span<const PathVertex> light, std::span<const PathVertex> camera,
+                         const JoinDensities& join, const StrategyRules& rules) {
+  return 1.0f / (1.0f + other_strategies(light, camera, join, rules, true));
+}
+
+/// The power heuristic's weight of merging at camera[t - 1] a vertex made by light[s - 1], with
+/// `join`'s reverse densities (camera_end: the density with which light[s - 1] made the light
+/// vertex).
+inline float merge_weight(std::span<const PathVertex> light, std::span<const PathVertex> camera,
+                          const JoinDensities& join, const StrategyRules& rules) {
+  const float merge = rules.merge_density * nonzero(join.camera_end);
+  // The join of light[s - 1] to camera[t - 1] that the ratios are built from is itself a
+  // strategy for this path only where light[s - 1] does not go on through a delta.
+  const float join_counts = light.back().delta ? 0.0f : 1.0f;
+  return merge * merge / (join_counts + other_strategies(light, camera, join, rules, false));
+}
+
+/// The reverse densities the vertices of light[0, s) and camera[0, t) hold themselves.
+inline JoinDensities held_densities(std::span<const PathVertex> light,
+                                    std::span<const PathVertex> camera) {
+  const auto reverse = [](std::span<const PathVertex> path, std::size_t from_end) {
+    return path.size() > from_end ? path[path.size() - 1 - from_end].pdf_reverse : 0.0f;
+  };
+  return {reverse(light, 0), reverse(light, 1), reverse(camera, 0), reverse(camera, 1)};
+}
+
+}  // namespace detail
+
+/// The power heuristic's weight of strategy (s, t) for the full path made of light[0, s) and
+/// camera[0, t) (light[0] on a light, camera[0] the camera), whose vertices' pdf_forward and
+/// pdf_reverse are the densities of both directions along this full path: the joined vertices'
+/// reverse densities already set for the join (their deltas are read as cleared: their own next
+/// vertices are not on this path). Exposed for tests, which hold it against an explicit sum over
+/// all strategies.
+inline float bidirectional_weight(std::span<const PathVertex> light,
+                                  std::span<const PathVertex> camera, const StrategyRules& rules) {
+  return detail::join_weight(light, camera, detail::held_densities(light, camera), rules);
+}
+
+/// The power heuristic's weight of merging at camera[t - 1] a light vertex that light[s - 1]
+/// made (s >= 1, t >= 2): the full path is light[0, s), the merged vertex, camera[0, t - 1),
+/// with the same densities as for bidirectional_weight, camera[t - 1]'s reverse density the one
+/// with which light[s - 1] made the light vertex. Exposed for tests.
+inline float merge_weight(std::span<const PathVertex> light, std::span<const PathVertex> camera,
+                          const StrategyRules& rules) {
+  return detail::merge_weight(light, camera, detail::held_densities(light, camera), rules);
 }
 
 /// Bidirectional path tracing with the policies of Config C: its sampler, Fresnel, sphere shading,
@@ -136,6 +230,8 @@ inline float bidirectional_weight(std::span<const PathVertex> light,
 /// (ReportMaterial::sample) in both subpaths.
 template <RenderConfig C>
 class BidirectionalPathTracer {
+  using Kind = PathVertex::Kind;
+
  public:
   using SamplerType = typename C::sampler;
 
@@ -171,29 +267,62 @@ class BidirectionalPathTracer {
     const std::size_t t_count =
         camera_subpath(ray, filter_density, camera_sampler, camera_vertices, radiance, counters);
     const std::size_t s_count = light_subpath(light_sampler, light_vertices, counters);
-    const std::span<PathVertex> z = camera_vertices.first(t_count);
-    const std::span<PathVertex> y = light_vertices.first(s_count);
+    return radiance + connect(camera_vertices.first(t_count), light_vertices.first(s_count),
+                              camera_sampler, splat, 0.0f, counters);
+  }
 
-    for (std::size_t t = 1; t <= t_count; ++t)
-      for (std::size_t s = 0; s <= s_count; ++s) {
+  /// Every join of camera subpath `z` (z[0] the camera) and light subpath `y` (y[0] on a light;
+  /// may be empty): the light for the pixel, with joins to the camera going to `splat` as in
+  /// sample(). `merge_density`: vertex merging's eta where merges compete for the same paths
+  /// (merge()), zero for bidirectional path tracing alone.
+  template <typename Splat>
+  Color connect(std::span<const PathVertex> z, std::span<const PathVertex> y,
+                SamplerType& camera_sampler, Splat&& splat, float merge_density,
+                TraceCounters& counters) const {
+    const StrategyRules rules{light_tracing_counts_, merge_density};
+    Color radiance(0.0f);
+    for (std::size_t t = 1; t <= z.size(); ++t)
+      for (std::size_t s = 0; s <= y.size(); ++s) {
         // s + t - 2 scattering vertices; (0, 1) would be the camera alone. (1, 1) is a lamp
         // seen by the camera, joined to it as light tracing joins it.
         if (s + t < 2 || int(s + t) - 2 > most_vertices_) continue;
         if (s == 0) {
-          if (t >= 2) radiance += emitted(z, t);
+          if (t >= 2) radiance += emitted(z.first(t), rules);
         } else if (t == 1) {
-          if (light_tracing_counts_) join_camera(y, s, splat, counters);
+          if (light_tracing_counts_) join_camera(y.first(s), rules, splat, counters);
         } else if (s == 1) {
-          radiance += join_light(z, t, camera_sampler, counters);
+          radiance += join_light(z.first(t), rules, camera_sampler, counters);
         } else {
-          radiance += join(y, s, z, t, counters);
+          radiance += join(y.first(s), z.first(t), rules, counters);
         }
       }
     return radiance;
   }
 
- private:
-  using Kind = PathVertex::Kind;
+  /// Vertex merging (Georgiev et al. 2012; Hachisuka et al. 2012): the light that vertex k >= 1
+  /// of light subpath `light_path` carries to camera vertex z[t - 1] (t >= 2) when it lies within
+  /// the merging radius of it, for the pixel: its weight, over the light paths that could have
+  /// brought it, with the uniform kernel over the radius's disc, 1 / merge_density in all. Zero
+  /// where the path would be too long, where either vertex does not scatter diffusely, where the
+  /// light vertex lies on another sphere or arrived from the other side.
+  Color merge(std::span<const PathVertex> z, std::span<const PathVertex> light_path, std::size_t k,
+              float merge_density) const {
+    const std::size_t t = z.size();
+    const PathVertex& pt = z[t - 1];
+    const PathVertex& photon = light_path[k];
+    if (int(k + t) - 2 > most_vertices_ || photon.sphere != pt.sphere || !pt.joinable())
+      return Color(0.0f);
+    const PathVertex& from = light_path[k - 1];
+    // The light arrives along the light vertex's own incoming direction.
+    const Color value = diffuse_value(pt, from.point - photon.point);
+    if (value == Color(0.0f) || glm::dot(photon.facing, pt.facing) <= 0.0f) return Color(0.0f);
+    const std::span<const PathVertex> light = light_path.first(k);
+    const StrategyRules rules{light_tracing_counts_, merge_density};
+    const JoinDensities join{density(pt, from), k >= 2 ? light_path[k - 2].pdf_reverse : 0.0f,
+                             photon.pdf_forward, density(pt, z[t - 2])};
+    const float weight = detail::merge_weight(light, z, join, rules);
+    return pt.beta * value * photon.beta * (weight / merge_density);
+  }
 
   /// The camera subpath into `z`, z[0] the camera; the background its rays escape to goes
   /// straight to `radiance` (no other strategy finds it). Returns the vertices made.
@@ -237,6 +366,7 @@ class BidirectionalPathTracer {
                 Transport::importance, unused, counters);
   }
 
+ private:
   /// Follows `ray` from vertex v[first - 1], carrying `beta`, its direction drawn with density
   /// `direction_pdf` per unit solid angle (zero: through a delta), adding vertices to `v` while
   /// the path length allows; camera subpaths collect the background in `background`. Returns
@@ -358,55 +488,18 @@ class BidirectionalPathTracer {
     return enters_hit == (glm::dot(direction, b.normal) < 0.0f);
   }
 
-  /// Strategy s = 0: the camera subpath's last vertex z[t - 1] on an emissive sphere.
-  Color emitted(std::span<PathVertex> z, std::size_t t) const {
-    PathVertex& pt = z[t - 1];
+  /// Strategy s = 0: the camera subpath's last vertex on an emissive sphere.
+  Color emitted(std::span<const PathVertex> z, const StrategyRules& rules) const {
+    const std::size_t t = z.size();
+    const PathVertex& pt = z[t - 1];
     const std::uint32_t emitter = scene_.surface(pt.sphere).emitter;
     if (emitter == kNotAnEmitter) return Color(0.0f);
     const Color le = scene_.surface(pt.sphere).material.emission;
     // As a light's vertex: its origin density, and its emission towards z[t - 2].
     const PathVertex light_view = as_light(pt, emitter);
-    const float weight = join_weight(
-        {}, z.first(t), {0.0f, 0.0f, light_view.pdf_forward, density(light_view, z[t - 2])});
+    const float weight = detail::join_weight(
+        {}, z, {0.0f, 0.0f, light_view.pdf_forward, density(light_view, z[t - 2])}, rules);
     return pt.beta * le * weight;
-  }
-
-  /// The reverse densities a join sets: of the subpaths' joined vertices (each made by the
-  /// other one) and of the vertices before them (made through the joined ones). Zero where the
-  /// subpath has no such vertex.
-  struct JoinDensities {
-    float light_end, light_before, camera_end, camera_before;
-  };
-
-  /// bidirectional_weight of the join of light[0, s) and camera[0, t): for the call only, the
-  /// join's reverse densities set and the joined vertices' deltas cleared (their own next
-  /// vertices are not on this path).
-  float join_weight(std::span<PathVertex> light, std::span<PathVertex> camera,
-                    const JoinDensities& join) const {
-    struct Saved {
-      PathVertex* vertex;
-      float pdf_reverse;
-      bool delta;
-    };
-    std::array<Saved, 4> saved{};
-    std::size_t count = 0;
-    const auto set = [&](std::span<PathVertex> path, std::size_t from_end, float pdf) {
-      if (path.size() <= from_end) return;
-      PathVertex& v = path[path.size() - 1 - from_end];
-      saved[count++] = {&v, v.pdf_reverse, v.delta};
-      v.pdf_reverse = pdf;
-      if (from_end == 0) v.delta = false;
-    };
-    set(light, 0, join.light_end);
-    set(light, 1, join.light_before);
-    set(camera, 0, join.camera_end);
-    set(camera, 1, join.camera_before);
-    const float weight = bidirectional_weight(light, camera, light_tracing_counts_);
-    while (count-- > 0) {
-      saved[count].vertex->pdf_reverse = saved[count].pdf_reverse;
-      saved[count].vertex->delta = saved[count].delta;
-    }
-    return weight;
   }
 
   /// Surface vertex `v` on emitter `emitter` seen as the first vertex of a light subpath.
@@ -419,9 +512,10 @@ class BidirectionalPathTracer {
 
   /// Strategy t = 1: light vertex y[s - 1] joined to the camera.
   template <typename Splat>
-  void join_camera(std::span<PathVertex> y, std::size_t s, Splat& splat,
+  void join_camera(std::span<const PathVertex> y, const StrategyRules& rules, Splat& splat,
                    TraceCounters& counters) const {
-    PathVertex& qs = y[s - 1];
+    const std::size_t s = y.size();
+    const PathVertex& qs = y[s - 1];
     if (!qs.joinable()) return;
     const std::optional<CameraConnection> to_camera = camera_.connect(qs.point);
     if (!to_camera) return;
@@ -446,8 +540,9 @@ class BidirectionalPathTracer {
     const float camera_pdf =
         detail::area_density(camera_.solid_angle_density(-to_camera->direction) / pixels_, eye, qs);
     // 1 / w - 1 with the camera's density at h = 1: every term holds h^2 once.
-    const float w = join_weight(y.first(s), std::span<PathVertex>(&eye, 1),
-                                {camera_pdf, s >= 2 ? density(qs, y[s - 2]) : 0.0f, 0.0f, 0.0f});
+    const float w =
+        detail::join_weight(y, std::span<const PathVertex>(&eye, 1),
+                            {camera_pdf, s >= 2 ? density(qs, y[s - 2]) : 0.0f, 0.0f, 0.0f}, rules);
     const float filter_weight = 1.0f / w - 1.0f;
     splat(to_camera->film, value * to_camera->importance, filter_weight);
   }
@@ -458,9 +553,10 @@ class BidirectionalPathTracer {
   /// or through a uniform point of its area from inside). The weight counts the light's point
   /// with the light subpaths' density, as pbrt-v4 does, so that all strategies' weights come from
   /// one set of densities and sum to one.
-  Color join_light(std::span<PathVertex> z, std::size_t t, SamplerType& sampler,
+  Color join_light(std::span<const PathVertex> z, const StrategyRules& rules, SamplerType& sampler,
                    TraceCounters& counters) const {
-    PathVertex& pt = z[t - 1];
+    const std::size_t t = z.size();
+    const PathVertex& pt = z[t - 1];
     if (emission_.empty()) return Color(0.0f);
     // The draws come before the test of the vertex, so that every vertex draws the same.
     const float u_light = sampler.next_1d();
@@ -504,17 +600,18 @@ class BidirectionalPathTracer {
       light.sphere = emitter.sphere;
       light.pdf_forward = emission_.sphere_density(choice.index);
     }
-    const float weight =
-        join_weight(std::span<PathVertex>(&light, 1), z.first(t),
-                    {density(pt, light), 0.0f, density(light, pt), density(pt, z[t - 2])});
+    const float weight = detail::join_weight(
+        std::span<const PathVertex>(&light, 1), z,
+        {density(pt, light), 0.0f, density(light, pt), density(pt, z[t - 2])}, rules);
     return value * weight;
   }
 
   /// Strategies s, t >= 2: light vertex y[s - 1] joined to camera vertex z[t - 1].
-  Color join(std::span<PathVertex> y, std::size_t s, std::span<PathVertex> z, std::size_t t,
-             TraceCounters& counters) const {
-    PathVertex& qs = y[s - 1];
-    PathVertex& pt = z[t - 1];
+  Color join(std::span<const PathVertex> y, std::span<const PathVertex> z,
+             const StrategyRules& rules, TraceCounters& counters) const {
+    const std::size_t s = y.size(), t = z.size();
+    const PathVertex& qs = y[s - 1];
+    const PathVertex& pt = z[t - 1];
     if (qs.kind != Kind::surface || pt.kind != Kind::surface || !qs.joinable() || !pt.joinable())
       return Color(0.0f);
     const Vec3 offset = pt.point - qs.point;
@@ -526,9 +623,9 @@ class BidirectionalPathTracer {
     const Color value =
         qs.beta * diffuse_value(qs, direction) * geometry * diffuse_value(pt, -direction) * pt.beta;
     if (value == Color(0.0f) || !visible(qs, pt, counters)) return Color(0.0f);
-    const float weight = join_weight(
-        y.first(s), z.first(t),
-        {density(pt, qs), density(qs, y[s - 2]), density(qs, pt), density(pt, z[t - 2])});
+    const float weight = detail::join_weight(
+        y, z, {density(pt, qs), density(qs, y[s - 2]), density(qs, pt), density(pt, z[t - 2])},
+        rules);
     return value * weight;
   }
 

@@ -1,0 +1,161 @@
+#pragma once
+// The light subpaths of one iteration of vertex connection and merging
+// (render/bidirectional_execution.hpp): one path per pixel, kept by path index, and a hash grid of
+// the vertices at which their light may be merged with a camera path's.
+//
+// The store is filled in chunks of consecutive paths, each chunk by one thread into storage of
+// its own, so what a chunk holds depends on its paths' indices only. The grid is a counting sort of
+// the vertices by cell, in path and vertex order, and a query visits its cells in a fixed order:
+// the candidates a camera vertex meets, and the order in which their light is added, depend on
+// the scene, the settings and the seed, never on the threads.
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "glint/instruction_set.hpp"
+#include "glint/math/vector.hpp"
+#include "glint/render/estimators/bidirectional.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE {
+
+class LightPathStore {
+ public:
+  /// Paths per chunk: enough to keep a thread busy between its claims, few enough to share a
+  /// pass of a small image among threads.
+  static constexpr std::size_t kChunkPaths = 512;
+
+  /// A vertex that light may be merged at: the `vertex`th of path `path`, at `point`.
+  struct Entry {
+    Vec3 point;
+    std::uint32_t path;
+    std::uint32_t vertex;
+  };
+
+  explicit LightPathStore(std::size_t paths)
+      : paths_(paths), chunks_((paths + kChunkPaths - 1) / kChunkPaths) {}
+
+  std::size_t path_count() const { return paths_; }
+  std::size_t chunk_count() const { return chunks_.size(); }
+
+  /// Refills chunk `chunk` with its paths: trace(path index, scratch) writes a path's vertices to
+  /// the front of `scratch` and returns how many it wrote.
+  template <typename Trace>
+  void fill_chunk(std::size_t chunk, std::span<PathVertex> scratch, Trace&& trace) {
+    Chunk& c = chunks_[chunk];
+    c.vertices.clear();
+    c.starts.clear();
+    const std::size_t first = chunk * kChunkPaths;
+    const std::size_t last = std::min(first + kChunkPaths, paths_);
+    for (std::size_t path = first; path < last; ++path) {
+      c.starts.push_back(std::uint32_t(c.vertices.size()));
+      const std::size_t count = trace(path, scratch);
+      c.vertices.insert(c.vertices.end(), scratch.begin(), scratch.begin() + std::ptrdiff_t(count));
+    }
+    c.starts.push_back(std::uint32_t(c.vertices.size()));
+  }
+
+  /// Path `index`'s vertices, its light's point first.
+  std::span<const PathVertex> path(std::size_t index) const {
+    const Chunk& c = chunks_[index / kChunkPaths];
+    const std::size_t i = index % kChunkPaths;
+    return std::span<const PathVertex>(c.vertices)
+        .subspan(c.starts[i], c.starts[i + 1] - c.starts[i]);
+  }
+
+  /// The vertices held in all chunks, for what a pass of light paths costs in memory.
+  std::size_t vertex_count() const {
+    std::size_t count = 0;
+    for (const Chunk& c : chunks_)
+      count += c.vertices.size();
+    return count;
+  }
+
+  /// Indexes, for queries of radius `radius`, every vertex after a path's first at which light
+  /// may be merged: on a sphere, with a diffuse lobe.
+  void build_grid(float radius) {
+    radius_ = radius;
+    inverse_cell_ = 1.0 / (2.0 * double(radius));
+    entries_.clear();
+    for (std::size_t path = 0; path < paths_; ++path) {
+      const std::span<const PathVertex> vertices = this->path(path);
+      for (std::size_t k = 1; k < vertices.size(); ++k)
+        if (vertices[k].kind == PathVertex::Kind::surface && vertices[k].joinable())
+          entries_.push_back({vertices[k].point, std::uint32_t(path), std::uint32_t(k)});
+    }
+    const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(1, 2 * entries_.size()));
+    mask_ = buckets - 1;
+    bucket_starts_.assign(buckets + 1, 0);
+    bucket_of_.resize(entries_.size());
+    for (std::size_t e = 0; e < entries_.size(); ++e) {
+      bucket_of_[e] = std::uint32_t(bucket(cell(entries_[e].point, 0.0)));
+      ++bucket_starts_[bucket_of_[e] + 1];
+    }
+    for (std::size_t b = 0; b < buckets; ++b)
+      bucket_starts_[b + 1] += bucket_starts_[b];
+    sorted_.resize(entries_.size());
+    std::vector<std::uint32_t>& next = bucket_fill_;
+    next.assign(bucket_starts_.begin(), bucket_starts_.end() - 1);
+    for (std::size_t e = 0; e < entries_.size(); ++e)
+      sorted_[next[bucket_of_[e]]++] = entries_[e];
+  }
+
+  /// Calls visit(entry) for each indexed vertex within the radius of `point` (strictly), in an
+  /// order fixed by the grid.
+  template <typename Visit>
+  void for_each_near(const Vec3& point, Visit&& visit) const {
+    // The cells are twice the radius wide: the ball around `point` meets two of them along each
+    // axis, from the one holding point - radius.
+    const std::array<std::int64_t, 3> base = cell(point, -0.5);
+    std::array<std::size_t, 8> visited{};
+    std::size_t count = 0;
+    for (int corner = 0; corner < 8; ++corner) {
+      const std::size_t b = bucket(
+          {base[0] + (corner & 1), base[1] + ((corner >> 1) & 1), base[2] + ((corner >> 2) & 1)});
+      // Two cells may share a bucket: each bucket is visited once.
+      if (std::find(visited.begin(), visited.begin() + std::ptrdiff_t(count), b) !=
+          visited.begin() + std::ptrdiff_t(count))
+        continue;
+      visited[count++] = b;
+      const float radius2 = radius_ * radius_;
+      for (std::uint32_t e = bucket_starts_[b]; e < bucket_starts_[b + 1]; ++e) {
+        const Vec3 offset = sorted_[e].point - point;
+        if (glm::dot(offset, offset) < radius2) visit(sorted_[e]);
+      }
+    }
+  }
+
+ private:
+  struct Chunk {
+    std::vector<PathVertex> vertices;
+    std::vector<std::uint32_t> starts;  ///< each path's first vertex, and the end
+  };
+
+  /// The cell holding `point` shifted by `shift` cells along each axis.
+  std::array<std::int64_t, 3> cell(const Vec3& point, double shift) const {
+    return {std::int64_t(std::floor(double(point.x) * inverse_cell_ + shift)),
+            std::int64_t(std::floor(double(point.y) * inverse_cell_ + shift)),
+            std::int64_t(std::floor(double(point.z) * inverse_cell_ + shift))};
+  }
+
+  std::size_t bucket(const std::array<std::int64_t, 3>& c) const {
+    const std::uint64_t h = std::uint64_t(c[0]) * 0x9e3779b97f4a7c15ull ^
+                            std::uint64_t(c[1]) * 0xc2b2ae3d27d4eb4full ^
+                            std::uint64_t(c[2]) * 0x165667b19e3779f9ull;
+    return std::size_t((h ^ (h >> 29)) & mask_);
+  }
+
+  std::size_t paths_;
+  std::vector<Chunk> chunks_;
+  float radius_ = 0.0f;
+  double inverse_cell_ = 0.0;
+  std::size_t mask_ = 0;
+  std::vector<Entry> entries_, sorted_;
+  std::vector<std::uint32_t> bucket_of_, bucket_starts_, bucket_fill_;
+};
+
+}  // namespace glint::inline GLINT_ISA_NAMESPACE
