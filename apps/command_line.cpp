@@ -293,7 +293,9 @@ Options parse_options(int argc, char** argv, const Program& program, const Extra
 
 std::string help_text(const Program& program) {
   Options automatic;
-  return usage(program) + "\nvariant: " + std::string(program.variant) + "\nexecution model: " +
+  return usage(program) + "\nvariant: " + std::string(program.variant) +
+         (program.chooses_variant ? " unless --estimator or the scene asks for another" : "") +
+         "\nexecution model: " +
          (program.has_wavefront ? "wavefront (the default), or scalar with --scalar"
                                 : "scalar (this variant's only one)") +
          "\ninstruction sets (--simd): " + simd_list(program.simds) +

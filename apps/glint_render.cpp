@@ -1,11 +1,15 @@
-// glint-render: renders a scene file with one renderer variant, chosen when this file is
-// compiled: GLINT_VARIANT names a type of glint::variants (e.g. -DGLINT_VARIANT=report, or a file
-// that defines it and includes this one), the default variant where it is not defined. One
-// executable per variant, each linking its variant's renderers (two for a chain variant: the
-// wavefront one by default, the scalar one with --scalar) from the glint-renderers library. Its
-// options, outputs, signals, checkpoints, scene loading and execution model are
-// render_command.hpp's, shared with glint-render-mpi and compiled once (the glint-cli library);
-// this file only renders the built scene with the variant's renderer (render_variant.hpp).
+// glint-render: renders a scene file. A variant's own program, glint-render-VARIANT, renders with
+// that variant, chosen when this file is compiled (GLINT_VARIANT names a type of
+// glint::variants: -DGLINT_VARIANT=report, or a file that defines it and includes this one).
+// glint-render itself, compiled without it, holds the estimators of
+// glint::variants::render_estimators and chooses one per run: --estimator, or from the scene
+// (the path tracer, or vertex merging where the path tracer is blind to a point light's light:
+// render/path_tracing_blind_spot.hpp). Each program links its variants' renderers (two for a
+// chain variant: the wavefront one by default, the scalar one with --scalar) from the
+// glint-renderers library. Its options, outputs, signals, checkpoints, scene loading and
+// execution model are render_command.hpp's, shared with glint-render-mpi and compiled once (the
+// glint-cli library); this file only renders the built scene with the chosen variant's renderer
+// (render_variant.hpp).
 //
 // glint-render itself (GLINT_RENDER_SIMD_SETS, apps/CMakeLists.txt) holds this program three
 // times, compiled for x86-64, x86-64-v3 (AVX2) and x86-64-v4 (AVX-512), each in glint's
@@ -15,11 +19,19 @@
 // this CPU runs), which reads them again and renders: a binary that runs on any x86-64 CPU, at
 // its best width.
 
+#include <algorithm>
 #include <csignal>
+#include <cstddef>
+#include <functional>
 #include <iostream>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
+
+#include "glint/render/path_tracing_blind_spot.hpp"
 
 #include "out_of_memory.hpp"
 #include "progress_printer.hpp"
@@ -71,7 +83,7 @@ or a CPU without an instruction set this build uses,
 constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGALRM, SIGXCPU};
 
 /// The program's name in its messages: the name it was built as, or the one it was run as where
-/// that extends it with "-" and a name (glint-render-fast, a copy of glint-render).
+/// that extends it with "-" and a name (glint-render-nightly, a copy of glint-render).
 std::string program_name(const char* run_as) {
   const std::string_view built = GLINT_PROGRAM_NAME;
   std::string_view name = run_as ? run_as : "";
@@ -95,15 +107,102 @@ extern "C" int glint_render_avx512(int argc, char** argv);
 
 namespace {
 
+/// --estimator's lines of the help, where the program is glint-render (which takes --estimator
+/// even where the build compiled no estimator but the default: scripts name it either way);
+/// "" for a variant's own program.
+std::string estimator_help() {
+  namespace cli = glint::cli;
+  if (!cli::kHoldsEstimators) return "";
+  const std::vector<std::string>& names = cli::estimator_names();
+  std::string list;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    list.append(i == 0 ? "" : i + 1 == names.size() ? " or " : ", ").append(names[i]);
+  const std::string automatic =
+      cli::kBlindSpotIndex
+          ? names.front() + " (the path tracer), or " + names[*cli::kBlindSpotIndex] +
+                " where a point light shines through glass or by way of a "
+                "mirror: light no path from the camera can follow"
+          : names.front();
+  const std::string text = "what renders the image: auto (the default: " + automatic + "), " +
+                           list +
+                           "; each renders the image its own program glint-render-NAME renders, "
+                           "bit for bit";
+  // Wrapped as the other options' lines are: from column 23 to column 92.
+  constexpr std::size_t kIndent = 22, kWidth = 92;
+  std::string lines = "  --estimator NAME    ";
+  std::size_t column = kIndent;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::size_t length = end - start;
+    if (column > kIndent && column + 1 + length > kWidth) {
+      lines.append("\n").append(kIndent, ' ');
+      column = kIndent;
+    } else if (column > kIndent) {
+      lines.push_back(' ');
+      ++column;
+    }
+    lines.append(text, start, length);
+    column += length;
+    start = end + 1;
+  }
+  return lines + "\n";
+}
+
+/// --estimator's value: an index in ProgramVariants, or nullopt for auto.
+std::optional<std::size_t> parse_estimator(std::string_view option, std::string_view text) {
+  namespace cli = glint::cli;
+  if (text == "auto") return std::nullopt;
+  const std::vector<std::string>& names = cli::estimator_names();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (text == names[i]) return i;
+  std::string list = "auto";
+  for (std::size_t i = 0; i < names.size(); ++i)
+    list.append(i + 1 == names.size() ? " or " : ", ").append(names[i]);
+  throw cli::UsageError{std::string(option) + " expects " + list + ", got '" + std::string(text) +
+                        "'"};
+}
+
+/// The variant that renders `scene` where --estimator did not choose: the one that made the
+/// checkpoint `resumed` continues, where the program holds it; else the default variant, or the
+/// blind-spot variant where the scene has light the path tracer cannot see. The summary line
+/// names the one chosen.
+std::size_t automatic_estimator(const glint::Scene& scene,
+                                const std::optional<glint::Checkpoint>& resumed) {
+  namespace cli = glint::cli;
+  if (resumed) {
+    // "NAME, wavefront" in older checkpoints of the wavefront renderer.
+    const std::string& made_by = resumed->key.variant;
+    std::string name = made_by.substr(0, made_by.find(", "));
+    std::replace(name.begin(), name.end(), '_', '-');
+    const std::vector<std::string>& names = cli::estimator_names();
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (names[i] == name) return i;
+  }
+  if (!cli::kBlindSpotIndex || !glint::path_tracing_blind_spot(scene)) return 0;
+  return *cli::kBlindSpotIndex;
+}
+
 int run(int argc, char** argv) {
   namespace cli = glint::cli;
   const std::string name = program_name(argc > 0 ? argv[0] : nullptr);
+  const std::string estimator_lines = estimator_help();
   cli::Program program = kProgram;
   program.name = name.c_str();
+  program.extra_options = estimator_lines;
+  program.chooses_variant = glint::cli::kHoldsEstimators;
   cli::Options options;
+  std::optional<std::size_t> estimator;  // an index in ProgramVariants; none: auto
+  const cli::ExtraOption estimator_option = [&](std::string_view arg,
+                                                const std::function<std::string_view()>& value) {
+    if (estimator_lines.empty() || arg != "--estimator") return false;
+    estimator = parse_estimator(arg, value());
+    return true;
+  };
   glint::Simd simd;
   try {
-    options = cli::parse_options(argc, argv, program);
+    options = cli::parse_options(argc, argv, program, estimator_option);
     simd = cli::run_simd(program, options);
   } catch (const cli::UsageError&) {
     const cli::Failure failure = cli::current_failure(program);
@@ -139,25 +238,33 @@ int run(int argc, char** argv) {
     const cli::LoadedScene loaded =
         cli::load_scene(options.scene, !options.quiet, options.checkpoint || options.resume);
     const glint::Scene& scene = loaded.scene;
-    glint::check_supported<Variant>(scene);
-    const glint::RenderSettings settings = cli::render_settings(options, scene);
-    cli::PassKeeper keeper(program, options, settings, loaded.text_hash);
+    // Without --estimator, a resumed render continues with the variant that made it.
+    std::optional<glint::Checkpoint> resumed;
+    if (!estimator) resumed = cli::PassKeeper::read_resumed(options);
+    const std::size_t chosen = estimator ? *estimator : automatic_estimator(scene, resumed);
+    return cli::with_program_variant(chosen, [&]<typename V>() {
+      // What the messages, the summary, the checkpoint and the EXR header say is V's.
+      program.variant = V::info.name;
+      program.has_wavefront = cli::kHasWavefront<V>;
+      program.wavefront_lanes = cli::kWavefrontLanes<V>;
+      glint::check_supported<V>(scene);
+      const glint::RenderSettings settings = cli::render_settings(options, scene);
+      cli::PassKeeper keeper(program, options, settings, loaded.text_hash, std::move(resumed));
 
-    const glint::RenderControl control{cli::ProgressPrinter(!options.quiet), keeper.callback(),
-                                       &cli::stop_requested, options.checkpoint.has_value()};
-    glint::RenderResult result = cli::with_memory_for(
-        [&] {
-          return cli::image_memory(settings, options.resume.has_value(), cli::kVariantSplats);
-        },
-        [&] {
-          return cli::with_renderer<Variant>(
-              cli::execution_model(program, options), [&]<typename Renderer>() {
-                return Renderer::render(scene, settings, control, keeper.start());
-              });
-        });
-    const std::string workers = std::to_string(result.stats.threads) + " threads";
-    return cli::finish_run(program, options, output, settings, std::move(result), keeper,
-                           {workers, ""});
+      const glint::RenderControl control{cli::ProgressPrinter(!options.quiet), keeper.callback(),
+                                         &cli::stop_requested, options.checkpoint.has_value()};
+      glint::RenderResult result = cli::with_memory_for(
+          [&] { return cli::image_memory(settings, options.resume.has_value(), cli::kSplats<V>); },
+          [&] {
+            return cli::with_renderer<V>(
+                cli::execution_model(program, options), [&]<typename Renderer>() {
+                  return Renderer::render(scene, settings, control, keeper.start());
+                });
+          });
+      const std::string workers = std::to_string(result.stats.threads) + " threads";
+      return cli::finish_run(program, options, output, settings, std::move(result), keeper,
+                             {workers, ""});
+    });
   } catch (...) {
     const cli::Failure failure = cli::current_failure(program);
     std::cerr << failure.message;

@@ -2,10 +2,13 @@
 
 #include "pass_keeper.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include "glint/error.hpp"
+#include "glint/variants.hpp"
 #include "out_of_memory.hpp"
 #include "staged_outputs.hpp"
 #include "untrusted_text.hpp"
@@ -23,24 +26,39 @@ std::string wavefront_checkpoint_variant(const Program& program) {
 
 }  // namespace
 
+std::optional<glint::Checkpoint> PassKeeper::read_resumed(const Options& options) {
+  if (!options.resume) return std::nullopt;
+  const std::string& file = *options.resume;
+  return with_memory_for([&] { return "reading the checkpoint " + file; },
+                         [&] { return glint::read_checkpoint(file); });
+}
+
 PassKeeper::PassKeeper(const Program& program, const Options& options,
-                       const glint::RenderSettings& settings, std::uint64_t scene_hash)
-    : program_(program), options_(options) {
+                       const glint::RenderSettings& settings, std::uint64_t scene_hash,
+                       std::optional<glint::Checkpoint> resumed)
+    : program_(program), options_(options), resumed_(std::move(resumed)) {
   // Either execution model continues a checkpoint of either: their sums are the same bits.
   if (options.checkpoint || options.resume)
     key_ = glint::CheckpointKey::of(scene_hash, program.variant, settings);
   if (options.resume) {
     const std::string& file = *options.resume;
-    resumed_ = with_memory_for([&] { return "reading the checkpoint " + file; },
-                               [&] { return glint::read_checkpoint(file); });
+    if (!resumed_) resumed_ = read_resumed(options);
     if (resumed_->key.variant == wavefront_checkpoint_variant(program))
       resumed_->key.variant = program.variant;
     // Named here rather than by check_checkpoint_matches: the name is the file's, which anyone
     // may have written, so it is shown escaped.
-    if (resumed_->key.variant != key_.variant)
+    if (resumed_->key.variant != key_.variant) {
+      // Where the name is a variant's, the program that continues the render.
+      std::string continued_by;
+      glint::variants::visit_by_name(resumed_->key.variant, [&]<typename V>() {
+        std::string dashed(V::info.name);
+        std::replace(dashed.begin(), dashed.end(), '_', '-');
+        continued_by = " (glint-render-" + dashed + " continues it)";
+      });
       throw glint::CheckpointError("cannot resume from " + file + ": it was made by variant '" +
                                    escaped(resumed_->key.variant) + "', this is variant '" +
-                                   key_.variant + "'");
+                                   key_.variant + "'" + continued_by);
+    }
     glint::check_checkpoint_matches(*resumed_, key_, *options.resume);
     last_passes_ = resumed_->passes_done;
     last_spp_ = resumed_->samples_per_pixel_done;

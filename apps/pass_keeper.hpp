@@ -22,9 +22,15 @@ namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 class PassKeeper {
  public:
   /// `scene_hash`: scene_text_hash of the scene file's text, needed only when a checkpoint is
-  /// written or resumed. Throws CheckpointError for a checkpoint that cannot be resumed.
+  /// written or resumed. `resumed`: --resume's checkpoint where the program has read it already
+  /// (read_resumed), else it is read here. Throws CheckpointError for a checkpoint that cannot be
+  /// resumed.
   PassKeeper(const Program& program, const Options& options, const glint::RenderSettings& settings,
-             std::uint64_t scene_hash);
+             std::uint64_t scene_hash, std::optional<glint::Checkpoint> resumed = std::nullopt);
+
+  /// --resume's checkpoint, read (none without --resume): for a program that needs to know what
+  /// made it before it chooses its variant. Throws CheckpointError.
+  static std::optional<glint::Checkpoint> read_resumed(const Options& options);
   PassKeeper(const PassKeeper&) = delete;
   PassKeeper& operator=(const PassKeeper&) = delete;
 

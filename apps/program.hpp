@@ -29,6 +29,9 @@ struct Program {
   /// the one it was compiled for (glint::kCompiledSimd).
   std::span<const glint::Simd> simds;
   int wavefront_lanes;  ///< the paths its wavefront renderer shades at once
+  /// Whether `variant` is only the default: the program chooses its variant per run
+  /// (glint-render: --estimator, or from the scene).
+  bool chooses_variant = false;
 };
 
 // --- The execution model ------------------------------------------------------------------

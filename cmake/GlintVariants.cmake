@@ -1,9 +1,11 @@
 # Reads the list of named variants from include/glint/variants.hpp by compiling and running
 # cmake/list_variants.cpp, so that no CMake file or script keeps a copy of it. Sets
 #   GLINT_VARIANTS         the variant names, in the order of glint::variants::all
-#   GLINT_DEFAULT_VARIANT  the variant glint-render (without a suffix) is built with
+#   GLINT_DEFAULT_VARIANT  the variant glint-render renders with unless told otherwise (and
+#                          glint-render-mpi always)
 #   GLINT_WAVEFRONT_VARIANTS  the variants that also have the wavefront renderer
 #   GLINT_EXECUTION_<name>    the class template of variant <name>'s Renderer execution model
+#   GLINT_RENDER_ESTIMATORS   the variants glint-render holds (--estimator), the default first
 # and writes ${PROJECT_BINARY_DIR}/variants.tsv (the program's output) for bench/run-all.
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
   ${PROJECT_SOURCE_DIR}/include/glint/variants.hpp ${PROJECT_SOURCE_DIR}/cmake/list_variants.cpp)
@@ -22,6 +24,7 @@ file(WRITE ${PROJECT_BINARY_DIR}/variants.tsv "${glint_variants_tsv}")
 set(GLINT_VARIANTS)
 set(GLINT_DEFAULT_VARIANT)
 set(GLINT_WAVEFRONT_VARIANTS)
+set(GLINT_RENDER_ESTIMATORS)
 string(REPLACE "\n" ";" glint_variant_lines "${glint_variants_tsv}")
 foreach(line IN LISTS glint_variant_lines)
   if(line MATCHES "^variant\t([a-z0-9_]+)\t")
@@ -32,6 +35,8 @@ foreach(line IN LISTS glint_variant_lines)
     set(GLINT_EXECUTION_${CMAKE_MATCH_1} ${CMAKE_MATCH_2})
   elseif(line MATCHES "^renderer\t([a-z0-9_]+)\twavefront\t")
     list(APPEND GLINT_WAVEFRONT_VARIANTS ${CMAKE_MATCH_1})
+  elseif(line MATCHES "^estimator\t([a-z0-9_]+)$")
+    list(APPEND GLINT_RENDER_ESTIMATORS ${CMAKE_MATCH_1})
   endif()
 endforeach()
 if(NOT GLINT_VARIANTS OR NOT GLINT_DEFAULT_VARIANT)

@@ -2,7 +2,8 @@
 // scripts: "variant<TAB>NAME<TAB>same|different<TAB>DESCRIPTION", then "default<TAB>NAME", then
 // "renderer<TAB>NAME<TAB>scalar|wavefront<TAB>CLASS" for each execution model a variant renders
 // with: scalar is Renderer<V> (one path at a time), whose execution model is the class template
-// CLASS (what its estimator names); wavefront is WavefrontRenderer<V>.
+// CLASS (what its estimator names); wavefront is WavefrontRenderer<V>. Then
+// "estimator<TAB>NAME" for each variant glint-render holds (glint::variants::render_estimators).
 // Compiled and run at configure time (cmake/GlintVariants.cmake), so that variants.hpp stays
 // the only list of variants.
 
@@ -47,4 +48,7 @@ int main() {
     if constexpr (glint::WavefrontConfig<V>)
       std::printf("renderer\t%s\twavefront\tglint::WavefrontExecution\n", name.c_str());
   });
+  [&]<typename... V>(std::type_identity<std::tuple<V...>>) {
+    (std::printf("estimator\t%s\n", std::string(V::info.name).c_str()), ...);
+  }(std::type_identity<glint::variants::render_estimators>{});
 }

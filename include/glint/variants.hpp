@@ -138,8 +138,18 @@ using all = std::tuple<report, fast, no_fresnel, schlick_fresnel, no_antialiasin
                        uniform_shading, stratified_sampler, sobol_sampler, emitter_sampling,
                        fast_no_emitter_sampling, light_tracing, bidirectional, vcm>;
 
-/// The variant glint-render (without a suffix) is built with.
+/// The variant glint-render renders with where nothing is asked for and the path tracer sees all
+/// the scene's light (render/path_tracing_blind_spot.hpp), and glint-render-mpi's.
 using default_variant = fast;
+
+/// What glint-render renders with, where nothing is asked for, a scene whose light the path tracer
+/// cannot see: a point light shining through glass or by way of a mirror.
+using blind_spot_variant = vcm;
+
+/// The variants glint-render holds, among which --estimator chooses: the default variant and the
+/// ones that replace its estimator only (the same camera, sampler and material model).
+using render_estimators =
+    std::tuple<default_variant, blind_spot_variant, bidirectional, light_tracing>;
 
 /// Calls `visit.template operator()<V>()` for each variant V of `all`, in order.
 template <typename Visit>

@@ -4,7 +4,8 @@
 # Its lines are "variant<TAB>NAME<TAB>same|different<TAB>DESCRIPTION", in the order of
 # glint::variants::all, then "default<TAB>NAME", then
 # "renderer<TAB>NAME<TAB>scalar|wavefront<TAB>CLASS" for each execution model a variant renders
-# with (CLASS: the C++ class template of that execution model).
+# with (CLASS: the C++ class template of that execution model), then "estimator<TAB>NAME" for
+# each variant glint-render holds (its --estimator choices, the default first).
 
 # glint_variants_check TSV: fails, saying why, unless TSV is such a file with `report` first.
 glint_variants_check() {
@@ -18,6 +19,7 @@ glint_variants_check() {
       $4 != "" { if (++variants == 1) first = $2; next }
     $1 == "default" && NF == 2 { defaults++; next }
     $1 == "renderer" && NF == 4 && ($3 == "scalar" || $3 == "wavefront") && $4 ~ /^glint::[A-Za-z]+$/ { next }
+    $1 == "estimator" && NF == 2 && $2 ~ /^[a-z0-9_]+$/ { next }
     { printf "%s:%d: not a variant line: %s\n", FILENAME, FNR, $0 > "/dev/stderr"; bad = 1 }
     END {
       if (bad) exit 1
@@ -33,7 +35,14 @@ glint_variant_rows() {
   awk -F'\t' '$1 == "variant" { print $2 "\t" $4 ($3 == "different" ? " (different image)" : "") }' "$1"
 }
 
-# glint_default_variant TSV: the variant plain glint-render is built with.
+# glint_default_variant TSV: the variant plain glint-render renders with unless the scene or
+# --estimator asks for another.
 glint_default_variant() {
   awk -F'\t' '$1 == "default" { print $2 }' "$1"
+}
+
+# glint_render_estimators TSV: the variants glint-render holds (--estimator), one per line, the
+# default first.
+glint_render_estimators() {
+  awk -F'\t' '$1 == "estimator" { print $2 }' "$1"
 }

@@ -172,21 +172,25 @@ else()
 endif()
 
 # Each program names itself in its messages: the name it was built as (glint-render-report), or
-# for glint-render-DEFAULT, a copy of glint-render, the name it was run as.
+# for a copy of glint-render named glint-render-SOMETHING, the name it was run as.
 glint_cli_test(program-name-variant PROGRAM glint-render-report STATUS 2
                STDERR "^glint-render-report: unknown option '--frobnicate'.Run 'glint-render-report --help' for the options"
                ARGS ${glint_cli_scenes}/tiny.scene --frobnicate)
 glint_cli_test(program-name-help PROGRAM glint-render-report STATUS 0
                STDOUT "^usage: glint-render-report SCENE \\[options\\]" ARGS --help)
-string(REPLACE "_" "-" glint_default_dashed ${GLINT_DEFAULT_VARIANT})
+set(glint_render_copy ${PROJECT_BINARY_DIR}/cli-test/copies/glint-render-nightly)
+add_test(NAME "cli: program-name-copy-made"
+         COMMAND ${CMAKE_COMMAND} -E copy $<TARGET_FILE:glint-render> ${glint_render_copy})
+set_tests_properties("cli: program-name-copy-made" PROPERTIES LABELS cli
+                     FIXTURES_SETUP glint_render_copy)
 add_test(NAME "cli: program-name-copy"
-         COMMAND ${CMAKE_COMMAND}
-                 -DPROGRAM=$<TARGET_FILE_DIR:glint-render>/glint-render-${glint_default_dashed}
+         COMMAND ${CMAKE_COMMAND} -DPROGRAM=${glint_render_copy}
                  "-DARGS=${glint_cli_scenes}/tiny.scene|--frobnicate" -DEXPECT_STATUS=2
-                 "-DEXPECT_STDERR=^glint-render-${glint_default_dashed}: unknown option '--frobnicate'.Run 'glint-render-${glint_default_dashed} --help'"
+                 "-DEXPECT_STDERR=^glint-render-nightly: unknown option '--frobnicate'.Run 'glint-render-nightly --help'"
                  -DSCRATCH=${PROJECT_BINARY_DIR}/cli-test/program-name-copy
                  -P ${CMAKE_CURRENT_LIST_DIR}/run_cli.cmake)
-set_tests_properties("cli: program-name-copy" PROPERTIES LABELS cli)
+set_tests_properties("cli: program-name-copy" PROPERTIES LABELS cli
+                     FIXTURES_REQUIRED glint_render_copy)
 
 # --stats-json (tests/cli/check_stats_json.cmake): the figures as JSON, written with the images:
 # 24x16 pixels of tiny.scene at 3 samples each are 1152 samples; stopped by --time-limit 0, the
@@ -277,8 +281,10 @@ glint_cli_progress_test(progress-default-variant glint-render "[a-z_]+, (wavefro
 # one signal (to the process and its group: `timeout`) are one stop; planted symbolic links are
 # never followed; all outputs or none; outputs refused before rendering; threads that cannot
 # start; checkpoints resumed to the uninterrupted bytes (after SIGINT, or SIGKILL after a
-# checkpoint between passes), checkpoints of other renders refused; --time-limit. Status 77:
-# the case cannot run here (a read-only directory does not stop root).
+# checkpoint between passes), checkpoints of other renders refused; --time-limit. On sky.scene,
+# which glint-render renders with its default variant, the path tracer (the estimators' own
+# programs run the checkpoint cases below). Status 77: the case cannot run here (a read-only
+# directory does not stop root).
 find_program(GLINT_BASH bash)
 if(GLINT_BASH)
   foreach(case sigint sigterm sighup group_signal timeout second_signal sigint_quiet planted_symlinks
@@ -291,7 +297,7 @@ if(GLINT_BASH)
     string(REPLACE "_" "-" name ${case})
     add_test(NAME "cli: ${name}"
              COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/long_render_test.bash ${case}
-                     $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
+                     $<TARGET_FILE:glint-render> ${glint_cli_scenes}/sky.scene
                      ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli SKIP_RETURN_CODE 77)
     if(case MATCHES "^(checkpoint_resume|checkpoint_after_kill|group_signal|repeated_sigxcpu)$")
@@ -300,6 +306,39 @@ if(GLINT_BASH)
     if(GLINT_SANITIZE)
       set_tests_properties("cli: ${name}" PROPERTIES ENVIRONMENT GLINT_LONG_RENDER_SIZE=160x120)
     endif()
+  endforeach()
+endif()
+
+# glint-render's estimators: the path tracer where it sees all the light, vertex merging where a
+# point light shines through glass (tiny.scene), --estimator to choose; a name it does not hold
+# is refused, and a variant's own program takes no --estimator. Each estimator gives its own
+# program's bytes, and a resumed render continues with the estimator of its checkpoint
+# (tests/cli/estimator_test.bash).
+string(REPLACE "_" "-" glint_default_dashed ${GLINT_DEFAULT_VARIANT})
+glint_cli_test(estimator-auto-path-tracer STATUS 0
+               STDERR "glint-render \\(${GLINT_DEFAULT_VARIANT}, "
+               ARGS ${glint_cli_scenes}/sky.scene -o out.png --spp 2)
+glint_cli_test(estimator-choose STATUS 0 STDERR "glint-render \\(${GLINT_DEFAULT_VARIANT}, "
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --spp 2
+                    --estimator ${glint_default_dashed})
+glint_cli_test(estimator-unknown STATUS 2
+               STDERR "--estimator expects auto, ${glint_default_dashed}.*, got 'path'"
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --estimator path)
+glint_cli_test(estimator-in-variant-program PROGRAM glint-render-report STATUS 2
+               STDERR "unknown option '--estimator'"
+               ARGS ${glint_cli_scenes}/tiny.scene -o out.png --estimator report)
+if("vcm" IN_LIST GLINT_BUILT_VARIANTS)
+  glint_cli_test(estimator-auto-blind-spot STATUS 0 STDERR "glint-render \\(vcm, "
+                 ARGS ${glint_cli_scenes}/tiny.scene -o out.png --spp 2)
+endif()
+if(GLINT_BASH)
+  foreach(case same_bytes_as_own_program resume_follows_checkpoint)
+    string(REPLACE "_" "-" name ${case})
+    add_test(NAME "cli: estimator-${name}"
+             COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/estimator_test.bash ${case}
+                     $<TARGET_FILE:glint-render> $<TARGET_FILE_DIR:glint-render>
+                     ${glint_cli_scenes}/tiny.scene ${PROJECT_BINARY_DIR}/cli-test/estimator-${name})
+    set_tests_properties("cli: estimator-${name}" PROPERTIES LABELS cli)
   endforeach()
 endif()
 
@@ -375,7 +414,8 @@ if(TARGET glint-render-vcm)
   endif()
 endif()
 
-# The execution model (tests/cli/execution_model_test.bash): --scalar renders a finite image of
+# The execution model (tests/cli/execution_model_test.bash), on a scene glint-render renders with
+# its default variant (a point light and no glass or mirror): --scalar renders a finite image of
 # the right size; the default and --scalar agree statistically; a checkpoint of either model
 # resumes with either to the uninterrupted bytes; a variant without the wavefront renderer
 # accepts --scalar, which changes nothing. --help says what --scalar does for each kind of variant.
@@ -391,7 +431,7 @@ if(GLINT_BASH)
     string(REPLACE "_" "-" name ${case})
     add_test(NAME "cli: ${name}"
              COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/execution_model_test.bash ${case}
-                     $<TARGET_FILE:glint-render> ${glint_cli_scenes}/tiny.scene
+                     $<TARGET_FILE:glint-render> ${glint_cli_scenes}/sky.scene
                      ${PROJECT_BINARY_DIR}/cli-test/${name} $<TARGET_FILE:glint-render-report>
                      $<TARGET_FILE:glint-checkpoint-forge>)
     set_tests_properties("cli: ${name}" PROPERTIES LABELS cli)

@@ -81,7 +81,7 @@ case_resume_across_models() {
     fail "making the wavefront checkpoint failed (status $?)"
   cmp -s scalar.ck wavefront.ck || fail "the two execution models wrote different checkpoints"
   local variant
-  variant=$("$program" --help | sed -n 's/^variant: //p')
+  variant=$("$program" --help | sed -n 's/^variant: \([a-z0-9_]*\).*/\1/p')
   "$forge" scalar.ck legacy.ck "$variant, wavefront" || fail "forging the legacy checkpoint failed"
   local resume
   for resume in "--resume scalar.ck" "--scalar --resume wavefront.ck" "--resume legacy.ck" \

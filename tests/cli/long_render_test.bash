@@ -479,13 +479,13 @@ case_resume_refused() {
     "$scene" "${long_render[@]}" --seed 7 --resume ck.glint
   if [[ -n $other_program ]]; then
     program=$other_program refused_before_render \
-      "^glint-render-report: error: cannot resume from ck\.glint: it was made by variant '[a-z_]+', this is variant 'report'$" \
+      "^glint-render-report: error: cannot resume from ck\.glint: it was made by variant '[a-z_]+', this is variant 'report' \(glint-render-[a-z-]+ continues it\)$" \
       "$scene" "${long_render[@]}" --resume ck.glint
   fi
   head -c 100 ck.glint >short.glint
   refused_before_render "^glint-render: error: cannot resume from short\.glint: it is truncated" \
     "$scene" "${long_render[@]}" --resume short.glint
-  refused_before_render "^glint-render: error: cannot resume from .*tiny\.scene: it is not a glint checkpoint" \
+  refused_before_render "^glint-render: error: cannot resume from .*/$(basename "$scene" .scene)\.scene: it is not a glint checkpoint" \
     "$scene" "${long_render[@]}" --resume "$scene"
   [[ ! -e out.png && ! -e out.pfm ]] || fail "an image was written"
 }

@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
 # glint-render-mpi's promises, run under mpirun:
 #
-#   mpi_render_test.bash CASE MPIEXEC MPI_PROGRAM PROGRAM SOURCE_DIR SCRATCH [ARGS...]
+#   mpi_render_test.bash CASE MPIEXEC MPI_PROGRAM PROGRAM VARIANT SOURCE_DIR SCRATCH [ARGS...]
 #
 # CASE is one of the functions below named case_*; it runs MPI_PROGRAM (glint-render-mpi) under
-# MPIEXEC and PROGRAM (glint-render, of the same variant) in the empty directory SCRATCH; ARGS
-# go to the case. mpirun runs as root in CI: the caller sets OMPI_ALLOW_RUN_AS_ROOT and
+# MPIEXEC and PROGRAM (glint-render) with --estimator VARIANT (glint-render-mpi's variant) in
+# the empty directory SCRATCH; ARGS go to the case. mpirun runs as root in CI: the caller sets OMPI_ALLOW_RUN_AS_ROOT and
 # OMPI_ALLOW_RUN_AS_ROOT_CONFIRM. Ranks may outnumber the cores (--oversubscribe). Exit status
 # 0 on success, 1 on a failure, with the reason on stderr.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../support/bash_case.bash"
-case_name=$1 mpiexec=$2 mpi_program=$3 program=$4 source_dir=$5 scratch=$6
-shift 6
+case_name=$1 mpiexec=$2 mpi_program=$3 program=$4 variant=$5 source_dir=$6 scratch=$7
+shift 7
 
 enter_scratch "$scratch"
 
@@ -20,6 +20,11 @@ mpirun_n() { # RANKS ARGS...
   local ranks=$1
   shift
   "$mpiexec" --oversubscribe --bind-to none -n "$ranks" "$@"
+}
+
+# glint-render with glint-render-mpi's variant.
+glint_render() {
+  "$program" --estimator "$variant" "$@"
 }
 
 no_temporaries() {
@@ -37,7 +42,7 @@ small=(--width 72 --height 56 --spp 13 --max-depth 8 --seed 3)
 case_same_bytes() { # RANKS THREADS [OPTION...]: OPTIONs for both programs (--scalar, --simd)
   local ranks=$1 threads=$2
   shift 2
-  "$program" "$lamp_room" "${small[@]}" "$@" -o one.png --hdr one.pfm --quiet ||
+  glint_render "$lamp_room" "${small[@]}" "$@" -o one.png --hdr one.pfm --quiet ||
     fail "glint-render failed (status $?)"
   mpirun_n "$ranks" "$mpi_program" "$lamp_room" "${small[@]}" "$@" --threads "$threads" \
     -o many.png --hdr many.pfm 2>err.log || fail "glint-render-mpi failed (status $?)"
@@ -56,8 +61,8 @@ case_same_bytes() { # RANKS THREADS [OPTION...]: OPTIONs for both programs (--sc
 # write the same checkpoint after the first pass.
 case_resume_across() {
   local args=("$lamp_room" "${small[@]}" --quiet)
-  "$program" "${args[@]}" -o full.png --hdr full.pfm || fail "the full render failed"
-  "$program" "${args[@]}" -o a.png --time-limit 0 --checkpoint one.ck || fail "glint-render: $?"
+  glint_render "${args[@]}" -o full.png --hdr full.pfm || fail "the full render failed"
+  glint_render "${args[@]}" -o a.png --time-limit 0 --checkpoint one.ck || fail "glint-render: $?"
   mpirun_n 2 "$mpi_program" "${args[@]}" --threads 1 -o b.png --hdr b.pfm --resume one.ck \
     2>err.log || fail "glint-render-mpi --resume failed (status $?)"
   cmp b.png full.png && cmp b.pfm full.pfm || fail "glint-render's checkpoint resumed to other bytes"
@@ -65,7 +70,7 @@ case_resume_across() {
     2>err.log || fail "glint-render-mpi --checkpoint failed (status $?)"
   cmp one.ck many.ck || fail "the two programs' checkpoints after one pass differ"
   cmp a.png c.png || fail "the two programs' one-pass images differ"
-  "$program" "${args[@]}" -o d.png --hdr d.pfm --resume many.ck 2>err.log ||
+  glint_render "${args[@]}" -o d.png --hdr d.pfm --resume many.ck 2>err.log ||
     fail "glint-render --resume failed (status $?)"
   cmp d.png full.png && cmp d.pfm full.pfm || fail "glint-render-mpi's checkpoint resumed to other bytes"
 }
@@ -181,7 +186,7 @@ case_killed_rank() {
 # rank and SIGKILL a second later (this render's passes take a small part of it), and exits
 # with a status of its own: STATUS "any" accepts any but 0.
 case_stopped() { # SIGNAL STATUS
-  "$program" "${long_render[@]}" -o full.png --hdr full.pfm --threads 2 --quiet ||
+  glint_render "${long_render[@]}" -o full.png --hdr full.pfm --threads 2 --quiet ||
     fail "the full render failed"
   start_long_render 2 -- --checkpoint ck.glint
   kill -s "$1" "$pid"
@@ -196,7 +201,7 @@ case_stopped() { # SIGNAL STATUS
   grep -Eq "$pattern" err.log || fail "no stop message"
   [[ -f out.png && -f out.pfm && -f ck.glint ]] || fail "the image or the checkpoint is missing"
   no_temporaries
-  "$program" "${long_render[@]}" --threads 2 --resume ck.glint 2>err.log ||
+  glint_render "${long_render[@]}" --threads 2 --resume ck.glint 2>err.log ||
     fail "glint-render --resume failed (status $?)"
   cmp out.png full.png && cmp out.pfm full.pfm || fail "the resumed image differs"
 }

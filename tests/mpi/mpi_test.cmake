@@ -1,9 +1,8 @@
 # glint-render-mpi under mpirun (label `mpi`), where MPI was found and glint-render-mpi built:
-# the bytes of glint-render's image for 1, 2 and 3 ranks (and with --scalar, and with --simd
-# scalar), checkpoints resumed across the two programs, a scene error printed once, ranks
-# started with different settings refused, a bad option, a rank killed mid-render, and a stop
-# by a signal
-# (tests/mpi/mpi_render_test.bash). Ranks outnumber the cores with --oversubscribe; CI
+# the bytes of glint-render's image with the default variant (glint-render-mpi's) for 1, 2 and 3
+# ranks (and with --scalar, and with --simd scalar), checkpoints resumed across the two
+# programs, a scene error printed once, ranks started with different settings refused, a bad
+# option, a rank killed mid-render, and a stop by a signal (tests/mpi/mpi_render_test.bash). Ranks outnumber the cores with --oversubscribe; CI
 # runs as root, which Open MPI refuses unless told otherwise.
 if(NOT TARGET glint-render-mpi OR NOT MPIEXEC_EXECUTABLE)
   return()
@@ -14,11 +13,12 @@ if(NOT GLINT_BASH)
 endif()
 
 # glint_mpi_test(NAME CASE [ARGS...]): the script's case CASE with ARGS.
+string(REPLACE "_" "-" glint_mpi_variant ${GLINT_DEFAULT_VARIANT})
 function(glint_mpi_test name case)
   add_test(NAME "mpi: ${name}"
            COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/mpi_render_test.bash ${case}
                    ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:glint-render-mpi>
-                   $<TARGET_FILE:glint-render> ${PROJECT_SOURCE_DIR}
+                   $<TARGET_FILE:glint-render> ${glint_mpi_variant} ${PROJECT_SOURCE_DIR}
                    ${PROJECT_BINARY_DIR}/mpi-test/${name} ${ARGN})
   # Root is refused unless allowed; in a container without ptrace rights, Open MPI's
   # shared-memory single copy (CMA) fails: plain copies are as good for these small renders.

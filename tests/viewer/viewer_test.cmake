@@ -27,7 +27,7 @@ foreach(case page keys missing-image errors exr)
   add_test(NAME "viewer: ${case}"
            COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/viewer_test.bash ${case}
                    ${PROJECT_BINARY_DIR}/viewer-test/${case} ${PROJECT_SOURCE_DIR}
-                   $<TARGET_FILE:glint-render-report> $<TARGET_FILE_DIR:glint-render>/glint-render-fast
+                   $<TARGET_FILE:glint-render-report> $<TARGET_FILE:glint-render-fast>
                    $<TARGET_FILE:glint-compare> $<TARGET_FILE:glint-viewer-screenshot-check>)
   # 77: Chromium is missing (or, for `exr`, the build has no OpenEXR); ctest reports the test
   # as skipped. One browser at a time: each takes a core and a few hundred MB, and two at once
