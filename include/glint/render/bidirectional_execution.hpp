@@ -94,18 +94,19 @@ class BidirectionalExecution {
     std::vector<TraceCounters> thread_counters(std::size_t(std::max(threads, 1)));
     const auto work = [&](TraceCounters& mine) {
       typename C::sampler sampler;
-      std::vector<PathVertex> scratch(std::size_t(tracer_.subpath_capacity()));
+      std::vector<PathVertex> scratch(std::size_t(tracer_.subpath_capacity())), staging;
       for (std::size_t chunk = next_chunk.fetch_add(1, std::memory_order_relaxed);
            chunk < light_paths_.chunk_count();
            chunk = next_chunk.fetch_add(1, std::memory_order_relaxed))
-        light_paths_.fill_chunk(chunk, scratch, [&](std::size_t path, std::span<PathVertex> v) {
-          const std::size_t width = std::size_t(settings_.width);
-          sampler.start(PixelSample{std::uint32_t(path % width), std::uint32_t(path / width),
-                                    std::uint32_t(sample),
-                                    std::uint32_t(settings_.samples_per_pixel),
-                                    settings_.seed ^ LightTracingExecution<C>::kLightStream});
-          return tracer_.light_subpath(sampler, v, mine);
-        });
+        light_paths_.fill_chunk(
+            chunk, scratch, staging, [&](std::size_t path, std::span<PathVertex> v) {
+              const std::size_t width = std::size_t(settings_.width);
+              sampler.start(PixelSample{std::uint32_t(path % width), std::uint32_t(path / width),
+                                        std::uint32_t(sample),
+                                        std::uint32_t(settings_.samples_per_pixel),
+                                        settings_.seed ^ LightTracingExecution<C>::kLightStream});
+              return tracer_.light_subpath(sampler, v, mine);
+            });
     };
     {
       std::vector<std::jthread> helpers;

@@ -43,20 +43,24 @@ class LightPathStore {
   std::size_t chunk_count() const { return chunks_.size(); }
 
   /// Refills chunk `chunk` with its paths: trace(path index, scratch) writes a path's vertices to
-  /// the front of `scratch` and returns how many it wrote.
+  /// the front of `scratch` and returns how many it wrote. The paths gather in `staging` (the
+  /// calling thread's, reused from chunk to chunk) and are then copied into the chunk, whose
+  /// storage so holds what its largest filling needed rather than a doubled guess.
   template <typename Trace>
-  void fill_chunk(std::size_t chunk, std::span<PathVertex> scratch, Trace&& trace) {
+  void fill_chunk(std::size_t chunk, std::span<PathVertex> scratch,
+                  std::vector<PathVertex>& staging, Trace&& trace) {
     Chunk& c = chunks_[chunk];
-    c.vertices.clear();
+    staging.clear();
     c.starts.clear();
     const std::size_t first = chunk * kChunkPaths;
     const std::size_t last = std::min(first + kChunkPaths, paths_);
     for (std::size_t path = first; path < last; ++path) {
-      c.starts.push_back(std::uint32_t(c.vertices.size()));
+      c.starts.push_back(std::uint32_t(staging.size()));
       const std::size_t count = trace(path, scratch);
-      c.vertices.insert(c.vertices.end(), scratch.begin(), scratch.begin() + std::ptrdiff_t(count));
+      staging.insert(staging.end(), scratch.begin(), scratch.begin() + std::ptrdiff_t(count));
     }
-    c.starts.push_back(std::uint32_t(c.vertices.size()));
+    c.starts.push_back(std::uint32_t(staging.size()));
+    c.vertices.assign(staging.begin(), staging.end());
   }
 
   /// Path `index`'s vertices, its light's point first.
@@ -76,32 +80,30 @@ class LightPathStore {
   }
 
   /// Indexes, for queries of radius `radius`, every vertex after a path's first at which light
-  /// may be merged: on a sphere, with a diffuse lobe.
+  /// may be merged: on a sphere, with a diffuse lobe. A counting sort by bucket written straight
+  /// into the grid (no copy of the entries in path order): one pass counts the vertices, one
+  /// counts each bucket's, one places them, each bucket's in path and vertex order.
   void build_grid(float radius) {
     radius_ = radius;
     inverse_cell_ = 1.0 / (2.0 * double(radius));
-    entries_.clear();
-    for (std::size_t path = 0; path < paths_; ++path) {
-      const std::span<const PathVertex> vertices = this->path(path);
-      for (std::size_t k = 1; k < vertices.size(); ++k)
-        if (vertices[k].kind == PathVertex::Kind::surface && vertices[k].joinable())
-          entries_.push_back({vertices[k].point, std::uint32_t(path), std::uint32_t(k)});
-    }
-    const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(1, 2 * entries_.size()));
+    std::size_t count = 0;
+    for_each_mergeable([&](std::size_t, std::size_t, const PathVertex&) { ++count; });
+    const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(1, 2 * count));
     mask_ = buckets - 1;
-    bucket_starts_.assign(buckets + 1, 0);
-    bucket_of_.resize(entries_.size());
-    for (std::size_t e = 0; e < entries_.size(); ++e) {
-      bucket_of_[e] = std::uint32_t(bucket(cell(entries_[e].point, 0.0)));
-      ++bucket_starts_[bucket_of_[e] + 1];
-    }
-    for (std::size_t b = 0; b < buckets; ++b)
-      bucket_starts_[b + 1] += bucket_starts_[b];
-    sorted_.resize(entries_.size());
-    std::vector<std::uint32_t>& next = bucket_fill_;
-    next.assign(bucket_starts_.begin(), bucket_starts_.end() - 1);
-    for (std::size_t e = 0; e < entries_.size(); ++e)
-      sorted_[next[bucket_of_[e]]++] = entries_[e];
+    // Bucket b's count at b + 2; after the running sum, bucket_starts_[b + 1] is where bucket b
+    // begins, the cursor its entries advance, which leaves it where bucket b ends: bucket b is
+    // then [bucket_starts_[b], bucket_starts_[b + 1]).
+    bucket_starts_.assign(buckets + 2, 0);
+    for_each_mergeable([&](std::size_t, std::size_t, const PathVertex& v) {
+      ++bucket_starts_[bucket(cell(v.point, 0.0)) + 2];
+    });
+    for (std::size_t b = 2; b < bucket_starts_.size(); ++b)
+      bucket_starts_[b] += bucket_starts_[b - 1];
+    sorted_.resize(count);
+    for_each_mergeable([&](std::size_t path, std::size_t k, const PathVertex& v) {
+      sorted_[bucket_starts_[bucket(cell(v.point, 0.0)) + 1]++] = {v.point, std::uint32_t(path),
+                                                                   std::uint32_t(k)};
+    });
   }
 
   /// Calls visit(entry) for each indexed vertex within the radius of `point` (strictly), in an
@@ -149,13 +151,25 @@ class LightPathStore {
     return std::size_t((h ^ (h >> 29)) & mask_);
   }
 
+  /// Calls visit(path, k, vertex) for every vertex that build_grid indexes, in path and vertex
+  /// order.
+  template <typename Visit>
+  void for_each_mergeable(Visit&& visit) const {
+    for (std::size_t path = 0; path < paths_; ++path) {
+      const std::span<const PathVertex> vertices = this->path(path);
+      for (std::size_t k = 1; k < vertices.size(); ++k)
+        if (vertices[k].kind == PathVertex::Kind::surface && vertices[k].joinable())
+          visit(path, k, vertices[k]);
+    }
+  }
+
   std::size_t paths_;
   std::vector<Chunk> chunks_;
   float radius_ = 0.0f;
   double inverse_cell_ = 0.0;
   std::size_t mask_ = 0;
-  std::vector<Entry> entries_, sorted_;
-  std::vector<std::uint32_t> bucket_of_, bucket_starts_, bucket_fill_;
+  std::vector<Entry> sorted_;
+  std::vector<std::uint32_t> bucket_starts_;
 };
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE
