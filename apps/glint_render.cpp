@@ -19,7 +19,6 @@
 // this CPU runs), which reads them again and renders: a binary that runs on any x86-64 CPU, at
 // its best width.
 
-#include <algorithm>
 #include <csignal>
 #include <cstddef>
 #include <functional>
@@ -107,6 +106,14 @@ extern "C" int glint_render_avx512(int argc, char** argv);
 
 namespace {
 
+/// "a, b or c".
+std::string listed(const std::vector<std::string>& words) {
+  std::string text;
+  for (std::size_t i = 0; i < words.size(); ++i)
+    text.append(i == 0 ? "" : i + 1 == words.size() ? " or " : ", ").append(words[i]);
+  return text;
+}
+
 /// --estimator's lines of the help, where the program is glint-render (which takes --estimator
 /// even where the build compiled no estimator but the default: scripts name it either way);
 /// "" for a variant's own program.
@@ -114,9 +121,6 @@ std::string estimator_help() {
   namespace cli = glint::cli;
   if (!cli::kHoldsEstimators) return "";
   const std::vector<std::string>& names = cli::estimator_names();
-  std::string list;
-  for (std::size_t i = 0; i < names.size(); ++i)
-    list.append(i == 0 ? "" : i + 1 == names.size() ? " or " : ", ").append(names[i]);
   const std::string automatic =
       cli::kBlindSpotIndex
           ? names.front() + " (the path tracer), or " + names[*cli::kBlindSpotIndex] +
@@ -124,7 +128,7 @@ std::string estimator_help() {
                 "mirror: light no path from the camera can follow"
           : names.front();
   const std::string text = "what renders the image: auto (the default: " + automatic + "), " +
-                           list +
+                           listed(names) +
                            "; each renders the image its own program glint-render-NAME renders, "
                            "bit for bit";
   // Wrapped as the other options' lines are: from column 23 to column 92.
@@ -157,11 +161,10 @@ std::optional<std::size_t> parse_estimator(std::string_view option, std::string_
   const std::vector<std::string>& names = cli::estimator_names();
   for (std::size_t i = 0; i < names.size(); ++i)
     if (text == names[i]) return i;
-  std::string list = "auto";
-  for (std::size_t i = 0; i < names.size(); ++i)
-    list.append(i + 1 == names.size() ? " or " : ", ").append(names[i]);
-  throw cli::UsageError{std::string(option) + " expects " + list + ", got '" + std::string(text) +
-                        "'"};
+  std::vector<std::string> accepted{"auto"};
+  accepted.insert(accepted.end(), names.begin(), names.end());
+  throw cli::UsageError{std::string(option) + " expects " + listed(accepted) + ", got '" +
+                        std::string(text) + "'"};
 }
 
 /// The variant that renders `scene` where --estimator did not choose: the one that made the
@@ -172,10 +175,7 @@ std::size_t automatic_estimator(const glint::Scene& scene,
                                 const std::optional<glint::Checkpoint>& resumed) {
   namespace cli = glint::cli;
   if (resumed) {
-    // "NAME, wavefront" in older checkpoints of the wavefront renderer.
-    const std::string& made_by = resumed->key.variant;
-    std::string name = made_by.substr(0, made_by.find(", "));
-    std::replace(name.begin(), name.end(), '_', '-');
+    const std::string name = cli::dashed_variant_name(cli::PassKeeper::made_by(*resumed));
     const std::vector<std::string>& names = cli::estimator_names();
     for (std::size_t i = 0; i < names.size(); ++i)
       if (names[i] == name) return i;

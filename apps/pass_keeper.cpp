@@ -2,7 +2,6 @@
 
 #include "pass_keeper.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -15,22 +14,18 @@
 
 namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
-namespace {
-
-/// "NAME, wavefront": how older checkpoints of the wavefront renderer name their variant. Its
-/// sums are the scalar renderer's bit for bit, so a key names the variant alone, and such a
-/// checkpoint is this variant's.
-std::string wavefront_checkpoint_variant(const Program& program) {
-  return renderer_name(program, ExecutionModel::wavefront);
-}
-
-}  // namespace
-
 std::optional<glint::Checkpoint> PassKeeper::read_resumed(const Options& options) {
   if (!options.resume) return std::nullopt;
   const std::string& file = *options.resume;
   return with_memory_for([&] { return "reading the checkpoint " + file; },
                          [&] { return glint::read_checkpoint(file); });
+}
+
+std::string PassKeeper::made_by(const glint::Checkpoint& c) {
+  const std::string legacy =
+      std::string(", ") + std::string(execution_model_name(ExecutionModel::wavefront));
+  const std::string& name = c.key.variant;
+  return name.ends_with(legacy) ? name.substr(0, name.size() - legacy.size()) : name;
 }
 
 PassKeeper::PassKeeper(const Program& program, const Options& options,
@@ -43,17 +38,14 @@ PassKeeper::PassKeeper(const Program& program, const Options& options,
   if (options.resume) {
     const std::string& file = *options.resume;
     if (!resumed_) resumed_ = read_resumed(options);
-    if (resumed_->key.variant == wavefront_checkpoint_variant(program))
-      resumed_->key.variant = program.variant;
+    resumed_->key.variant = made_by(*resumed_);
     // Named here rather than by check_checkpoint_matches: the name is the file's, which anyone
     // may have written, so it is shown escaped.
     if (resumed_->key.variant != key_.variant) {
       // Where the name is a variant's, the program that continues the render.
       std::string continued_by;
       glint::variants::visit_by_name(resumed_->key.variant, [&]<typename V>() {
-        std::string dashed(V::info.name);
-        std::replace(dashed.begin(), dashed.end(), '_', '-');
-        continued_by = " (glint-render-" + dashed + " continues it)";
+        continued_by = " (glint-render-" + dashed_variant_name(V::info.name) + " continues it)";
       });
       throw glint::CheckpointError("cannot resume from " + file + ": it was made by variant '" +
                                    escaped(resumed_->key.variant) + "', this is variant '" +

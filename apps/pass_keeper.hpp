@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "glint/image/pixel_sums.hpp"
 #include "glint/instruction_set.hpp"
@@ -31,6 +32,10 @@ class PassKeeper {
   /// --resume's checkpoint, read (none without --resume): for a program that needs to know what
   /// made it before it chooses its variant. Throws CheckpointError.
   static std::optional<glint::Checkpoint> read_resumed(const Options& options);
+
+  /// The variant that made checkpoint `c`: its key's name, less the ", wavefront" with which
+  /// older checkpoints of the wavefront renderer name it (their sums are the scalar renderer's).
+  static std::string made_by(const glint::Checkpoint& c);
   PassKeeper(const PassKeeper&) = delete;
   PassKeeper& operator=(const PassKeeper&) = delete;
 

@@ -80,6 +80,15 @@ inline std::string renderer_name(const Program& program, ExecutionModel model) {
   return std::string(program.variant) + ", " + std::string(execution_model_name(model));
 }
 
+/// A variant's name as its program and --estimator write it: '_' as '-' (fast_no_emitter_sampling:
+/// glint-render-fast-no-emitter-sampling).
+inline std::string dashed_variant_name(std::string_view variant) {
+  std::string name(variant);
+  for (char& c : name)
+    if (c == '_') c = '-';
+  return name;
+}
+
 /// What the summary line says of the code that rendered: "avx512, 16 paths at once", "avx2,
 /// one path at a time".
 inline std::string simd_description(const Program& program, const Options& options) {

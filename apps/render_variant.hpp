@@ -87,7 +87,7 @@ static_assert(std::is_same_v<std::tuple_element_t<0, ProgramVariants>, Variant>,
 
 /// The first line of the help text.
 inline constexpr std::string_view kVariantDescription = [] {
-  if constexpr (kHoldsEstimators && std::tuple_size_v < ProgramVariants >> 1)
+  if constexpr (kHoldsEstimators && (std::tuple_size_v < ProgramVariants >> 1))
     return "Renders SCENE (a glint scene file) and writes an image: with the path tracer, or by "
            "vertex connection and merging where a point light shines through glass or by way of "
            "a mirror, which no path from the camera can follow (--estimator chooses).";
@@ -110,14 +110,8 @@ inline constexpr std::string_view kVariantDescription = [] {
 inline const std::vector<std::string>& estimator_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> list;
-    const auto dashed = [](std::string_view name) {
-      std::string text;
-      for (const char c : name)
-        text.push_back(c == '_' ? '-' : c);
-      return text;
-    };
     [&]<typename... V>(std::type_identity<std::tuple<V...>>) {
-      (list.push_back(dashed(V::info.name)), ...);
+      (list.push_back(dashed_variant_name(V::info.name)), ...);
     }(std::type_identity<ProgramVariants>{});
     return list;
   }();

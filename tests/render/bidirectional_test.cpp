@@ -190,18 +190,7 @@ TEST_CASE(
 
 TEST_CASE("bidirectional: the same bits for any threads, tiles and passes, and after a resume",
           "[render][light]") {
-  const glint::Scene scene = build(R"(
-image      width=23 height=17 spp=5 max_depth=4
-camera     position=0,0,20 look_at=0,0,0 up=0,1,0 fov=50
-antialias  sigma=0.5
-background color=0.1,0.2,0.3
-light      position=0,9,5 intensity=300
-sphere     center=0,-100008,0 radius=1e5 color=0.7,0.7,0.7
-sphere     center=-3,-3,0 radius=3 diffuse=0 transparent=1 ior=1.5
-sphere     center=4,-4,-2 radius=2 mirror=0.5 diffuse=0.5
-sphere     center=0,6,-4 radius=1 diffuse=0 emission=5,5,5
-)",
-                                   "mixed");
+  const glint::Scene scene = build(glint_test::kMixedRoomWithBackground, "mixed");
   glint::RenderSettings settings = glint::RenderSettings::from(scene);
   settings.seed = 7;
   (void)glint_test::check_same_bits<Bidirectional<Chain>>(scene, settings);
