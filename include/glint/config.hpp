@@ -13,6 +13,7 @@
 #include "glint/policy/estimator.hpp"
 #include "glint/policy/fresnel.hpp"
 #include "glint/policy/light_sampling.hpp"
+#include "glint/policy/material_model.hpp"
 #include "glint/policy/path_termination.hpp"
 #include "glint/policy/sampler.hpp"
 #include "glint/policy/sphere_shading.hpp"
@@ -31,11 +32,14 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 /// - PathTerminationPolicy: when a path ends (at the maximum depth, or by Russian roulette).
 /// - LightSamplingPolicy: whether diffuse hits also sample emissive spheres, and how that is
 ///   weighted against bounces that hit them (multiple importance sampling).
+/// - MaterialModelPolicy: which materials the spheres can have, as the Bsdf every estimator
+///   samples and evaluates at a hit (the report's material).
 template <Sampler SamplerPolicy, Estimator EstimatorPolicy, Fresnel FresnelPolicy,
           Antialiasing AntialiasingPolicy, SphereShading SphereShadingPolicy,
           DiffuseSampling DiffuseSamplingPolicy = UniformHemisphere,
           PathTermination PathTerminationPolicy = FixedDepth,
-          LightSampling LightSamplingPolicy = PointLightsOnly>
+          LightSampling LightSamplingPolicy = PointLightsOnly,
+          MaterialModel MaterialModelPolicy = ReportMaterialModel>
 struct Config {
   using sampler = SamplerPolicy;
   using estimator = EstimatorPolicy;
@@ -45,38 +49,42 @@ struct Config {
   using diffuse_sampling = DiffuseSamplingPolicy;
   using path_termination = PathTerminationPolicy;
   using light_sampling = LightSamplingPolicy;
+  using material_model = MaterialModelPolicy;
 
   template <Sampler P>
   using with_sampler = Config<P, estimator, fresnel, antialiasing, sphere_shading, diffuse_sampling,
-                              path_termination, light_sampling>;
+                              path_termination, light_sampling, material_model>;
   template <Estimator P>
   using with_estimator = Config<sampler, P, fresnel, antialiasing, sphere_shading, diffuse_sampling,
-                                path_termination, light_sampling>;
+                                path_termination, light_sampling, material_model>;
   template <Fresnel P>
   using with_fresnel = Config<sampler, estimator, P, antialiasing, sphere_shading, diffuse_sampling,
-                              path_termination, light_sampling>;
+                              path_termination, light_sampling, material_model>;
   template <Antialiasing P>
   using with_antialiasing = Config<sampler, estimator, fresnel, P, sphere_shading, diffuse_sampling,
-                                   path_termination, light_sampling>;
+                                   path_termination, light_sampling, material_model>;
   template <SphereShading P>
   using with_sphere_shading = Config<sampler, estimator, fresnel, antialiasing, P, diffuse_sampling,
-                                     path_termination, light_sampling>;
+                                     path_termination, light_sampling, material_model>;
   template <DiffuseSampling P>
   using with_diffuse_sampling = Config<sampler, estimator, fresnel, antialiasing, sphere_shading, P,
-                                       path_termination, light_sampling>;
+                                       path_termination, light_sampling, material_model>;
   template <PathTermination P>
   using with_path_termination = Config<sampler, estimator, fresnel, antialiasing, sphere_shading,
-                                       diffuse_sampling, P, light_sampling>;
+                                       diffuse_sampling, P, light_sampling, material_model>;
   template <LightSampling P>
   using with_light_sampling = Config<sampler, estimator, fresnel, antialiasing, sphere_shading,
-                                     diffuse_sampling, path_termination, P>;
+                                     diffuse_sampling, path_termination, P, material_model>;
+  template <MaterialModel P>
+  using with_material_model = Config<sampler, estimator, fresnel, antialiasing, sphere_shading,
+                                     diffuse_sampling, path_termination, light_sampling, P>;
 };
 
 namespace detail {
 // Deduction accepts a class derived from a Config, which is what a named variant is.
 template <typename S, typename M, typename F, typename A, typename H, typename D, typename T,
-          typename L>
-std::true_type derives_from_config(const Config<S, M, F, A, H, D, T, L>*);
+          typename L, typename B>
+std::true_type derives_from_config(const Config<S, M, F, A, H, D, T, L, B>*);
 std::false_type derives_from_config(...);
 }  // namespace detail
 

@@ -1,13 +1,18 @@
-// The report's material as a component (render/scattering.hpp): its samples against values
-// worked out by hand (Lambertian weights and densities, the mirror direction, Snell's law,
-// normal-incidence Fresnel reflectance), the agreement of sample pdfs with pdf(direction), and
-// the lobe choice of the one-lobe-per-bounce sampling.
+// The report's material as a Bsdf (render/materials/report_material.hpp): its samples against
+// values worked out by hand (Lambertian weights and densities, the mirror direction, Snell's law,
+// normal-incidence Fresnel reflectance), the agreement of sample pdfs with pdf(direction), the
+// lobe choice of the one-lobe-per-bounce sampling, and the distribution of its samples against
+// its pdf by a chi-square test over the sphere of directions (with the delta lobes' mass as one
+// more cell).
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <vector>
 
 #include "glint/config.hpp"
-#include "glint/render/scattering.hpp"
+#include "glint/render/materials/report_material.hpp"
+#include "statistics.hpp"
 
 using glint::Color;
 using glint::Lobe;
@@ -60,6 +65,61 @@ Material diffuse_material(float diffuse, Color color) {
   m.diffuse = diffuse;
   m.diffuse_color = color;
   return m;
+}
+
+// The sphere of directions in cells of equal solid angle: bands of cos(theta) about +z (the hit's
+// outward normal) times sectors of phi. The band edges include cos = 0, where a lobe's density
+// drops to zero.
+constexpr int kBands = 16;
+constexpr int kSectors = 32;
+constexpr int kCells = kBands * kSectors;
+
+int cell_of(const Vec3& direction) {
+  const double cosine = std::clamp(double(direction.z), -1.0, 1.0);
+  const int band = std::min(int((cosine + 1.0) / 2.0 * kBands), kBands - 1);
+  const double phi = std::atan2(double(direction.y), double(direction.x));
+  const int sector = std::clamp(int((phi + kPi) / (2.0 * kPi) * kSectors), 0, kSectors - 1);
+  return band * kSectors + sector;
+}
+
+/// The probability of each cell under density `pdf` (per unit solid angle): a midpoint rule on
+/// an 8 x 8 grid per cell in (cos theta, phi), in which solid angle is area.
+template <typename Density>
+std::vector<double> cell_masses(Density&& pdf) {
+  constexpr int kSub = 8;
+  const double d_cos = 2.0 / (kBands * kSub), d_phi = 2.0 * kPi / (kSectors * kSub);
+  std::vector<double> mass(kCells, 0.0);
+  for (int i = 0; i < kBands * kSub; ++i) {
+    const double cosine = -1.0 + (i + 0.5) * d_cos;
+    const double sine = std::sqrt(std::max(0.0, 1.0 - cosine * cosine));
+    for (int j = 0; j < kSectors * kSub; ++j) {
+      const double phi = -kPi + (j + 0.5) * d_phi;
+      const Vec3 direction(float(sine * std::cos(phi)), float(sine * std::sin(phi)), float(cosine));
+      mass[std::size_t((i / kSub) * kSectors + j / kSub)] += double(pdf(direction)) * d_cos * d_phi;
+    }
+  }
+  return mass;
+}
+
+/// Chi-square of `n` directions drawn by `draw(sampler)` (a ScatterSample) against density `pdf`:
+/// the directions sampled with a density counted by cell, the delta samples in one more cell
+/// whose expected mass is what the density leaves of one.
+template <typename Draw, typename Density>
+glint::test::ChiSquare sampling_against(Draw&& draw, Density&& pdf, int n, std::uint32_t seed) {
+  std::vector<double> observed(kCells + 1, 0.0), expected(kCells + 1, 0.0);
+  auto sampler = seeded_sampler(seed);
+  for (int i = 0; i < n; ++i) {
+    const ScatterSample s = draw(sampler);
+    ++observed[s.delta ? std::size_t(kCells) : std::size_t(cell_of(s.direction))];
+  }
+  const std::vector<double> mass = cell_masses(pdf);
+  double density_mass = 0.0;
+  for (int k = 0; k < kCells; ++k) {
+    expected[std::size_t(k)] = n * mass[std::size_t(k)];
+    density_mass += mass[std::size_t(k)];
+  }
+  expected[kCells] = n * std::max(0.0, 1.0 - density_mass);
+  return glint::test::chi_square_pooled(observed, expected);
 }
 
 }  // namespace
@@ -246,4 +306,90 @@ TEST_CASE("Transmission lobe: Snell's law, and Fresnel reflection with probabili
     CHECK(s.direction.x == Approx(incoming.x));
     CHECK(s.direction.z == Approx(-incoming.z));
   }
+}
+
+TEST_CASE("The Bsdf's samples are distributed as its pdf says, in both transport modes",
+          "[scattering][statistical]") {
+  // Each case: a material and the direction a path arrives along; the outward normal is +z.
+  Material mixed = diffuse_material(0.4f, Color(0.8f, 0.6f, 0.4f));
+  mixed.mirror = 0.3f;
+  mixed.transparent = 0.3f;
+  mixed.ior = 1.5f;
+  Material frosted = diffuse_material(0.5f, Color(0.9f));
+  frosted.transparent = 0.5f;
+  frosted.ior = 1.33f;
+  struct Case {
+    const char* name;
+    Material material;
+    Vec3 incoming;
+  };
+  const Case cases[] = {
+      {"diffuse, oblique", diffuse_material(0.9f, Color(0.8f, 0.5f, 0.2f)),
+       glm::normalize(Vec3(0.6f, 0.2f, -1.0f))},
+      {"diffuse, mirror and glass mixed, 45 degrees", mixed,
+       glm::normalize(Vec3(1.0f, 0.0f, -1.0f))},
+      {"diffuse and glass, from inside", frosted, glm::normalize(Vec3(0.3f, -0.4f, 1.0f))},
+  };
+  const int n = 100000;
+  std::uint32_t seed = 100;
+  for (const Case& c : cases) {
+    CAPTURE(c.name);
+    const TopOfSphere hit(c.material, c.incoming);
+    auto check = [&](const auto& bsdf) {
+      auto pdf = [&](const Vec3& direction) { return bsdf.pdf(direction); };
+      const auto radiance = sampling_against(
+          [&](auto& sampler) { return bsdf.template sample<glint::Transport::radiance>(sampler); },
+          pdf, n, seed++);
+      CAPTURE(radiance.statistic, radiance.degrees_of_freedom);
+      CHECK_FALSE(radiance.rejected());
+      const auto importance = sampling_against(
+          [&](auto& sampler) {
+            return bsdf.template sample<glint::Transport::importance>(sampler);
+          },
+          pdf, n, seed++);
+      CAPTURE(importance.statistic, importance.degrees_of_freedom);
+      CHECK_FALSE(importance.rejected());
+      // Each sample with a density has the pdf and the weight f |cos| / pdf that evaluate and
+      // pdf give for its direction.
+      auto sampler = seeded_sampler(seed++);
+      for (int i = 0; i < 2000; ++i) {
+        const ScatterSample s = bsdf.template sample<glint::Transport::radiance>(sampler);
+        if (s.delta) continue;
+        const float pdf_there = bsdf.pdf(s.direction);
+        REQUIRE(pdf_there > 0.0f);
+        CHECK(s.pdf == Approx(pdf_there).epsilon(1e-5));
+        const Color expected = bsdf.evaluate(s.direction) / pdf_there;
+        for (int k = 0; k < 3; ++k)
+          CHECK(s.weight()[k] == Approx(expected[k]).epsilon(1e-4));
+      }
+    };
+    check(glint::ReportMaterial<TestConfig<glint::CosineHemisphere, glint::ExactFresnel>>(
+        hit.interaction, hit.ray.direction));
+    check(glint::ReportMaterial<TestConfig<glint::UniformHemisphere, glint::SchlickFresnel>>(
+        hit.interaction, hit.ray.direction));
+  }
+}
+
+TEST_CASE("The sampling test catches a density 5% off in shape", "[scattering][statistical]") {
+  // Cosine-distributed samples against a density that moves 5% of the mass from the cosine lobe
+  // to the uniform hemisphere: the test must reject it, or it could not see a wrong pdf.
+  const TopOfSphere hit(diffuse_material(1.0f, Color(1.0f)), Vec3(0.0f, 0.0f, -1.0f));
+  const glint::ReportMaterial<TestConfig<glint::CosineHemisphere>> bsdf(hit.interaction,
+                                                                        hit.ray.direction);
+  auto draw = [&](auto& sampler) {
+    return bsdf.template sample<glint::Transport::radiance>(sampler);
+  };
+  const int n = 400000;
+  const auto right = sampling_against(
+      draw, [&](const Vec3& d) { return bsdf.pdf(d); }, n, 7);
+  CAPTURE(right.statistic, right.degrees_of_freedom);
+  CHECK_FALSE(right.rejected());
+  const auto wrong = sampling_against(
+      draw,
+      [&](const Vec3& d) {
+        return d.z > 0.0f ? 0.95f * bsdf.pdf(d) + 0.05f / (2.0f * float(kPi)) : 0.0f;
+      },
+      n, 7);
+  CAPTURE(wrong.statistic, wrong.degrees_of_freedom);
+  CHECK(wrong.rejected());
 }

@@ -39,6 +39,44 @@ double chi_square_equiprobable(const std::vector<double>& values, int bins, Cdf 
   return chi2;
 }
 
+/// A chi-square statistic and its degrees of freedom.
+struct ChiSquare {
+  double statistic = 0.0;
+  int degrees_of_freedom = 0;
+  bool rejected() const { return statistic > chi_square_threshold(degrees_of_freedom); }
+};
+
+/// Pearson's chi-square of observed against expected counts (the same total), the cells whose
+/// expectation is below `least_expected` pooled into one, as pbrt-v4's and Mitsuba 3's sampling
+/// tests pool them, so that the statistic keeps its distribution.
+inline ChiSquare chi_square_pooled(const std::vector<double>& observed,
+                                   const std::vector<double>& expected,
+                                   double least_expected = 5.0) {
+  ChiSquare result;
+  double pooled_observed = 0.0, pooled_expected = 0.0;
+  int cells = 0;
+  for (std::size_t i = 0; i < observed.size(); ++i) {
+    if (expected[i] < least_expected) {
+      pooled_observed += observed[i];
+      pooled_expected += expected[i];
+      continue;
+    }
+    const double d = observed[i] - expected[i];
+    result.statistic += d * d / expected[i];
+    ++cells;
+  }
+  if (pooled_expected > 0.0) {
+    const double d = pooled_observed - pooled_expected;
+    result.statistic += d * d / pooled_expected;
+    ++cells;
+  } else if (pooled_observed > 0.0) {
+    // Samples where the density says none can be: no chi-square can pass that.
+    result.statistic = INFINITY;
+  }
+  result.degrees_of_freedom = std::max(cells - 1, 1);
+  return result;
+}
+
 /// Kolmogorov-Smirnov distance between the sample and the hypothesised CDF.
 template <typename Cdf>
 double kolmogorov_smirnov(std::vector<double> values, Cdf cdf) {

@@ -83,6 +83,15 @@ concept Estimator = requires {
   typename E::template execution<void>;
 };
 
+/// Which materials spheres can have: the policy names the Bsdf (render/bsdf.hpp) of a hit, a class
+/// template over the Config and the width: `P::template bsdf<C, F>`. (The check forms it for
+/// `void` without instantiating it, as Estimator does.)
+template <typename P>
+concept MaterialModel = requires {
+  { P::name } -> std::convertible_to<std::string_view>;
+  typename P::template bsdf<void, float>;
+};
+
 /// Fresnel reflectance of a dielectric interface, used for fully transparent spheres.
 /// cos_incident is measured on the incident side; eta_* are the refractive indices.
 template <typename F>

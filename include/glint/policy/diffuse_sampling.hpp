@@ -15,9 +15,10 @@ struct UniformHemisphere {
     const Vec3For<FloatOf<V2>> d = sample_uniform_hemisphere(u);
     return {d, d.z / kUniformHemispherePdf};
   }
+  /// The density of a direction at cos(theta) from the normal: none below the surface.
   template <FloatType F>
-  static F pdf(F /*cos_theta*/) {
-    return splat<F>(kUniformHemispherePdf);
+  static F pdf(F cos_theta) {
+    return select(cos_theta > 0.0f, splat<F>(kUniformHemispherePdf), splat<F>(0.0f));
   }
 };
 

@@ -1,7 +1,7 @@
 #pragma once
 // PathTracer<Config>: the radiance along camera rays, generic over a Config. The estimator itself
-// is the one C::estimator names (render/estimators/tree.hpp or chain.hpp); both are built
-// from the report's material (render/scattering.hpp) and the shared hit set-up
+// is the one C::estimator names (render/estimators/tree.hpp or chain.hpp); both see the
+// material through the Bsdf of C::material_model (render/bsdf.hpp) and share the hit set-up
 // (render/estimators/path_context.hpp).
 
 #include "glint/config.hpp"

@@ -38,9 +38,11 @@
 #include "glint/config.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/instruction_set.hpp"
+#include "glint/render/bsdf.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/estimators/path_context.hpp"
 #include "glint/render/light_emission.hpp"
+#include "glint/render/materials.hpp"
 #include "glint/render/scattering.hpp"
 #include "glint/scene/scene.hpp"
 
@@ -398,7 +400,7 @@ class BidirectionalPathTracer {
       // light's point are not).
       const int depth = int(n) - 2;
       if (!context_.scatters_at(depth)) return n;
-      const ReportMaterial<C> material(it, ray.direction);
+      const BsdfAt<C> material(it, ray.direction);
       if (!material.scatters()) return n;
       if (material.has_lobe(Lobe::diffuse)) {
         vertex.albedo = material.albedo();

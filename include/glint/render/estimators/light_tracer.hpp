@@ -8,9 +8,9 @@
 // or on a light; the bidirectional estimators combine it with camera paths.
 //
 // A path's contributions are splats: each lands where the camera sees its vertex, on whichever
-// pixels' filters cover that point. The same Config as the camera paths: its sampler, Fresnel,
-// sphere shading, diffuse sampling and path termination; the report's material followed one lobe
-// per vertex (ReportMaterial::sample, in the importance transport mode).
+// pixels' filters cover that point. The same Config as the camera paths: its sampler, material
+// model and path termination; the hit's Bsdf sampled once per vertex in the importance transport
+// mode, and every vertex where it has a density connected to the camera.
 //
 // Path length is counted as the camera paths count it (render/estimators/path_context.hpp), so
 // that both estimate the same image for the same max_depth: the light of every light after at
@@ -22,9 +22,11 @@
 #include "glint/config.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/instruction_set.hpp"
+#include "glint/render/bsdf.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/estimators/path_context.hpp"
 #include "glint/render/light_emission.hpp"
+#include "glint/render/materials.hpp"
 #include "glint/render/scattering.hpp"
 #include "glint/scene/scene.hpp"
 
@@ -34,6 +36,8 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 /// a splat callback.
 template <RenderConfig C>
 class LightTracer {
+  static_assert(Bsdf<BsdfAt<C>, float, typename C::sampler>);
+
  public:
   using SamplerType = typename C::sampler;
 
@@ -46,8 +50,8 @@ class LightTracer {
   /// `splat(film, value)` for each of its connections to the camera: `value` is the light the
   /// connection brings, per unit of the pixel filter's density at `film` minus a pixel's centre.
   /// Draws, in order: the light (1d), the point on it (2d), the direction (2d); then at each
-  /// vertex roulette where C::path_termination plays (1d) and the lobe (as
-  /// ReportMaterial::sample).
+  /// vertex roulette where C::path_termination plays (1d) and the direction (as the Bsdf's
+  /// sample draws).
   template <typename Splat>
   void trace(SamplerType& sampler, Splat&& splat, TraceCounters& counters) const {
     if (emission_.empty()) return;
@@ -77,14 +81,16 @@ class LightTracer {
       if (!hit) return;
       const SurfaceInteraction it =
           SurfaceInteraction::at_hit(scene_, ray.origin, ray.direction, hit->t, hit->sphere, true);
-      const ReportMaterial<C> material(it, ray.direction);
-      if (material.has_lobe(Lobe::diffuse))
+      const BsdfAt<C> bsdf(it, ray.direction);
+      if (bsdf.has_density())
         connect(
             it.point, it.sphere, it.outward_normal,
             // f cos at the vertex: zero where the camera is on the other side of the surface.
-            [&](const Vec3& to_camera) { return weight * material.evaluate(to_camera); }, splat,
-            counters);
-      if (vertex == most_vertices || !material.scatters()) return;
+            [&](const Vec3& to_camera) {
+              return weight * bsdf.template evaluate<Transport::importance>(to_camera);
+            },
+            splat, counters);
+      if (vertex == most_vertices || !bsdf.scatters()) return;
       // Roulette on the weight relative to the light's, which is what a camera path's
       // throughput of one means here.
       if constexpr (C::path_termination::uses_roulette) {
@@ -95,7 +101,7 @@ class LightTracer {
           weight /= p;
         }
       }
-      const ScatterSample next = material.template sample<Transport::importance>(sampler);
+      const ScatterSample next = bsdf.template sample<Transport::importance>(sampler);
       weight *= next.weight();
       ray = PathContext<C>::continue_rays(it, next.direction);
     }

@@ -1,11 +1,10 @@
 #pragma once
-// What both estimators share: finding the next hit and setting it up for shading, the rays
-// towards the point lights there, sampling the emissive spheres and weighting the emission a
+// What the camera-path estimators share: finding the next hit and setting it up for shading, the
+// rays towards the point lights there, sampling the emissive spheres and weighting the emission a
 // bounce finds (C::light_sampling), and the path termination policy. Written once over a Float
 // type (math/wide.hpp): one path at width 1, a Float's lanes of paths wider. Units (see
-// docs/library.md): a point light of intensity I (W/sr) at distance d gives irradiance
-// I * colour * cos(theta) / d^2; a diffuse lobe reflects diffuse * colour / pi of its
-// irradiance as radiance.
+// docs/library.md): a point light of intensity I (W/sr) at distance d brings radiance
+// I * colour / d^2 from its one direction, which the hit's Bsdf reflects as f |cos| of it.
 //
 // Path length, one meaning for every light and every estimator: max_depth is the number of
 // bounces after the camera ray, so light reaches the camera after at most max_depth + 1
@@ -23,6 +22,7 @@
 #include "glint/geometry/ray.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
+#include "glint/render/bsdf.hpp"
 #include "glint/render/scattering.hpp"
 #include "glint/scene/scene.hpp"
 
@@ -45,8 +45,9 @@ struct TraceCounters {
 
 /// Where the light rays of a shading step go: traced at once (TracedLight) or queued for a
 /// batched trace (the wavefront renderer). shadow_rays: rays towards point lights, bringing
-/// `irradiance` where nothing blocks them; emitter_rays: rays towards points sampled on
-/// emissive spheres, bringing `light` where the first sphere they meet is `emitter_sphere`.
+/// `light` (the radiance the hit reflects back along the path) where nothing blocks them;
+/// emitter_rays: rays towards points sampled on emissive spheres, bringing `light` where the
+/// first sphere they meet is `emitter_sphere`.
 template <typename Q, typename F>
 concept LightRayQueue = requires(Q queue, MaskFor<F> lanes, const RayFor<F>& rays,
                                  const Vec3For<F>& color, UIntFor<F> sphere) {
@@ -108,11 +109,12 @@ class PathContext {
   }
 
   /// For each point light on the side each ray came from, in the scene's order, the shadow
-  /// rays of the lanes of `lanes` that it lights, with the irradiance it gives where they are
-  /// not blocked, to `queue.shadow_rays`.
-  template <typename F, typename Queue>
-  void light_rays(MaskFor<F> lanes, const BasicSurfaceInteraction<F>& it, Queue& queue,
-                  TraceCounters& counters) const {
+  /// rays of the lanes of `lanes` that it lights, with the light `bsdf` reflects of it back along
+  /// the path (f |cos| times the light's radiance I colour / d^2) where they are not blocked, to
+  /// `queue.shadow_rays`.
+  template <typename F, typename B, typename Queue>
+  void light_rays(MaskFor<F> lanes, const BasicSurfaceInteraction<F>& it, const B& bsdf,
+                  Queue& queue, TraceCounters& counters) const {
     using V3 = Vec3For<F>;
     for (const PointLight& light : scene_.lights()) {
       const V3 to_light = splat_vector<V3>(light.position) - it.point;
@@ -125,7 +127,8 @@ class PathContext {
       counters.rays += count(lit);
       queue.shadow_rays(
           lit, rays_leaving_spheres(it.point, direction, it.sphere, it.outward_normal, distance),
-          ((light.intensity * cosine) / distance2) * splat_vector<V3>(light.color));
+          bsdf.template evaluate<Transport::radiance>(direction) *
+              ((light.intensity / distance2) * splat_vector<V3>(light.color)));
     }
   }
 
@@ -152,15 +155,15 @@ class PathContext {
   }
 
   /// Light sampling at the hits of `lanes`: one emitter per lane, chosen by power, and a
-  /// direction towards it, reflected by `material`'s diffuse lobe and weighted against the
+  /// direction towards it, reflected by `bsdf` and weighted against the
   /// estimator's own bounce, whose density for a direction is `bounce_pdf(direction)`. One
   /// next_1d and one next_2d per lane whenever the scene has emitters, none otherwise (so a
   /// scene without emitters renders exactly as without light sampling). The rays that can
   /// bring light go to `queue.emitter_rays`.
-  template <typename F, typename BouncePdf, typename Draws, typename Queue>
-  void emitter_rays(MaskFor<F> lanes, const BasicSurfaceInteraction<F>& it,
-                    const ReportMaterial<C, F>& material, BouncePdf&& bounce_pdf, Draws& draws,
-                    Queue& queue, TraceCounters& counters) const {
+  template <typename F, typename B, typename BouncePdf, typename Draws, typename Queue>
+  void emitter_rays(MaskFor<F> lanes, const BasicSurfaceInteraction<F>& it, const B& bsdf,
+                    BouncePdf&& bounce_pdf, Draws& draws, Queue& queue,
+                    TraceCounters& counters) const {
     using V3 = Vec3For<F>;
     using M = MaskFor<F>;
     if (!has_emitters_) return;
@@ -174,7 +177,7 @@ class PathContext {
     const M none = view.none;
     const BasicEmitterSample<F> sample =
         sample_sphere_emitter(emitter.center, emitter.radius, it.point, outside, none, u);
-    const V3 reflected = material.evaluate(sample.direction);
+    const V3 reflected = bsdf.template evaluate<Transport::radiance>(sample.direction);
     const M arrives = lanes && sample.valid && sample.pdf > 0.0f &&
                       (reflected.x != 0.0f || reflected.y != 0.0f || reflected.z != 0.0f);
     if (!any(arrives)) return;
@@ -231,15 +234,15 @@ class PathContext {
   bool last_bounce_finds_light_;
 };
 
-/// A LightRayQueue that traces each ray at once, for one path (width 1): the irradiance of
-/// the point lights whose shadow rays are not blocked, and the light of the emitter sample if
+/// A LightRayQueue that traces each ray at once, for one path (width 1): the reflected light
+/// of the point lights whose shadow rays are not blocked, and the light of the emitter sample if
 /// it arrives.
 class TracedLight {
  public:
   explicit TracedLight(const Scene& scene) : scene_(scene) {}
 
-  void shadow_rays(bool lit, const Ray& ray, const Color& irradiance) {
-    if (lit && !scene_.occluded(ray)) irradiance_ += irradiance;
+  void shadow_rays(bool lit, const Ray& ray, const Color& light) {
+    if (lit && !scene_.occluded(ray)) point_light_ += light;
   }
   void emitter_rays(bool sampled, const Ray& ray, std::uint32_t emitter_sphere,
                     const Color& light) {
@@ -251,13 +254,14 @@ class TracedLight {
     emitter_light_ = light;
   }
 
-  const Color& irradiance() const { return irradiance_; }
+  /// The point lights' light reflected back along the path.
+  const Color& point_light() const { return point_light_; }
   bool emitter_visible() const { return emitter_visible_; }
   const Color& emitter_light() const { return emitter_light_; }
 
  private:
   const Scene& scene_;
-  Color irradiance_{0.0f};
+  Color point_light_{0.0f};
   bool emitter_visible_ = false;
   Color emitter_light_{0.0f};
 };

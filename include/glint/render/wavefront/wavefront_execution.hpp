@@ -280,14 +280,13 @@ class WavefrontExecution {
           from_pdf(kPaths),
           sampler(kPaths),
           shading_throughput(kPaths),
-          albedo(kPaths),
-          irradiance(kPaths),
+          point_light(kPaths),
           emitter_light(kPaths),
           pending(kPaths),
           ends(kPaths),
           shadow_rays(kShadowQueue / RayBatch::kWidth),
           shadow_owner(kShadowQueue + RayBatch::kWidth),
-          shadow_irradiance(kShadowQueue + RayBatch::kWidth),
+          shadow_light(kShadowQueue + RayBatch::kWidth),
           emitter_rays(kPaths / RayBatch::kWidth),
           emitter_owner(kPaths + RayBatch::kWidth),
           emitter_sphere(kPaths + RayBatch::kWidth),
@@ -311,8 +310,7 @@ class WavefrontExecution {
     // What the current bounce waits for (PendingLight): light that the queued rays may bring,
     // added by ChainEstimator::add_light once they are traced.
     ColorColumns shading_throughput;  ///< the throughput at the hit
-    ColorColumns albedo;
-    ColorColumns irradiance;
+    ColorColumns point_light;         ///< the point lights' light reflected along the path
     ColorColumns emitter_light;
     // A lane of SIMD flags per path: eight paths' flags load and store as one register.
     detail::AlignedArray<std::int32_t> pending;  ///< kDirectLight | kEmitterVisible
@@ -323,7 +321,7 @@ class WavefrontExecution {
     // last one.
     detail::AlignedArray<RayBatch> shadow_rays;
     std::vector<std::uint32_t> shadow_owner;
-    ColorColumns shadow_irradiance;
+    ColorColumns shadow_light;
     int shadow_count = 0;
 
     detail::AlignedArray<RayBatch> emitter_rays;
@@ -592,8 +590,7 @@ class WavefrontExecution {
     store(&state.pending[u], select(pending.direct, splat<I>(kDirectLight), splat<I>(0)));
     store(&state.ends[u], select(going_on, splat<I>(0), splat<I>(1)));
     state.shading_throughput.store(base, pending.throughput);
-    state.albedo.store(base, pending.albedo);
-    state.irradiance.store(base, splat_vector<Vec3For<Lanes>>(Color(0.0f)));
+    state.point_light.store(base, splat_vector<Vec3For<Lanes>>(Color(0.0f)));
   }
 
   /// Where ChainEstimator::step's light rays go for paths base .. base + kWidth - 1: the
@@ -603,14 +600,12 @@ class WavefrontExecution {
     LightQueue(const WavefrontExecution& execution, ThreadState& state, int base)
         : execution_(execution), state_(state), base_(base) {}
 
-    void shadow_rays(LaneMaskType lit, const RayFor<Lanes>& rays,
-                     const Vec3For<Lanes>& irradiance) {
+    void shadow_rays(LaneMaskType lit, const RayFor<Lanes>& rays, const Vec3For<Lanes>& light) {
       if constexpr (kWidth == 1) {
-        if (lit) execution_.queue_shadow_ray(state_, base_, rays, irradiance);
+        if (lit) execution_.queue_shadow_ray(state_, base_, rays, light);
       } else {
         for_each_block(bits_of_mask(lit), rays, [&](int at, LaneMask bits, const auto& block) {
-          execution_.queue_shadow_rays(state_, base_ + at, bits, block,
-                                       eight_lanes(irradiance, at));
+          execution_.queue_shadow_rays(state_, base_ + at, bits, block, eight_lanes(light, at));
         });
       }
     }
@@ -765,8 +760,8 @@ class WavefrontExecution {
     const IntLanes packing = packing_order(lanes);
     append_rays(state.shadow_rays.data(), q, lanes, packing, rays);
     append_values(&state.shadow_owner[std::size_t(q)], packing, base + lane_indices());
-    state.shadow_irradiance.store(q, Vec3Lanes{permute(light.x, packing), permute(light.y, packing),
-                                               permute(light.z, packing)});
+    state.shadow_light.store(q, Vec3Lanes{permute(light.x, packing), permute(light.y, packing),
+                                          permute(light.z, packing)});
     state.shadow_count += std::popcount(lanes);
   }
 
@@ -789,7 +784,7 @@ class WavefrontExecution {
     const int q = state.shadow_count++;
     state.shadow_rays[std::size_t(q / RayBatch::kWidth)].set(q % RayBatch::kWidth, ray);
     state.shadow_owner[std::size_t(q)] = std::uint32_t(p);
-    state.shadow_irradiance.set(q, light);
+    state.shadow_light.set(q, light);
   }
 
   static void queue_emitter_ray(ThreadState& state, int p, const Ray& ray, std::uint32_t sphere) {
@@ -800,7 +795,7 @@ class WavefrontExecution {
   }
 
   /// Traces the queued shadow rays and adds the light of those not blocked to their paths'
-  /// irradiance, in the order they were queued (a path's lights in the scene's order).
+  /// point_light, in the order they were queued (a path's lights in the scene's order).
   GLINT_STAGE void trace_shadow_rays(ThreadState& state) const {
     for_each_query(state.shadow_count, [&](std::size_t block, LaneMask lanes, bool pair) {
       const LaneMask blocked =
@@ -809,8 +804,7 @@ class WavefrontExecution {
       for_each_lane(lanes & ~blocked, [&](int lane) {
         const std::size_t q = block * RayBatch::kWidth + std::size_t(lane);
         const auto owner = int(state.shadow_owner[q]);
-        state.irradiance.set(owner,
-                             state.irradiance.get(owner) + state.shadow_irradiance.get(int(q)));
+        state.point_light.set(owner, state.point_light.get(owner) + state.shadow_light.get(int(q)));
       });
     });
     state.shadow_count = 0;
@@ -890,12 +884,11 @@ class WavefrontExecution {
     const LaneMaskType direct = (pending & kDirectLight) != 0;
     const LaneMaskType visible = (pending & kEmitterVisible) != 0;
     if (!any(direct || visible)) return;
-    state.radiance.store(base,
-                         ChainEstimator<C>::add_light(
-                             state.radiance.load(base),
-                             PendingLight<Lanes>{direct, state.shading_throughput.load(base),
-                                                 state.albedo.load(base)},
-                             state.irradiance.load(base), visible, state.emitter_light.load(base)));
+    state.radiance.store(
+        base, ChainEstimator<C>::add_light(
+                  state.radiance.load(base),
+                  PendingLight<Lanes>{direct, state.shading_throughput.load(base)},
+                  state.point_light.load(base), visible, state.emitter_light.load(base)));
   }
 
   /// Moves path `from` (still going on) to place `to`, whose path has ended.

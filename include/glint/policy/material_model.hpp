@@ -1,0 +1,29 @@
+#pragma once
+// Material models: which materials the spheres of a scene can have, as a Bsdf at each hit
+// (render/bsdf.hpp). The estimators ask a hit's Bsdf for samples, values and densities and never
+// name a material, so a model with more lobes renders under every estimator unchanged. Each
+// model names its Bsdf, a class template over the Config and the width, declared here so that the
+// policies do not pull in the renderer.
+
+#include <string_view>
+
+#include "glint/instruction_set.hpp"
+#include "glint/policy/concepts.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE {
+
+template <typename C, typename F = float>
+class ReportMaterial;  // render/materials/report_material.hpp
+
+/// The report's material: a diffuse lobe coloured by the sphere's shading, a mirror and a
+/// transmission lobe with Fresnel reflection and the inclusion tree's outside index, mixed by the
+/// sphere's coefficients. Reads the Config's Fresnel, sphere shading and diffuse sampling.
+struct ReportMaterialModel {
+  static constexpr std::string_view name = "the report's material";
+  template <typename C, typename F>
+  using bsdf = ReportMaterial<C, F>;
+};
+
+static_assert(MaterialModel<ReportMaterialModel>);
+
+}  // namespace glint::inline GLINT_ISA_NAMESPACE
