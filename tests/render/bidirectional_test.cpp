@@ -24,7 +24,6 @@
 #include "same_bits.hpp"
 
 using glint::Color;
-using glint::PathVertex;
 
 namespace bidirectional_test {
 
@@ -38,6 +37,7 @@ template <typename C>
 using PathReference = typename C::template with_diffuse_sampling<glint::CosineHemisphere>::
     template with_light_sampling<glint::EmitterSampling<glint::PowerHeuristic>>;
 using PixelCentres = Chain::with_antialiasing<glint::NoAntialiasing>;
+using PathVertex = glint::PathVertexOf<Chain>;
 
 glint::Scene build(const std::string& text, const char* label) {
   return glint::Scene::build(glint::read_scene_text(text, label));
@@ -157,7 +157,7 @@ TEST_CASE(
         if (d == 0.0) continue;
         subpaths(p, s, light, camera);
         const double weight =
-            glint::bidirectional_weight(light, camera, {light_tracing_counts, eta});
+            glint::bidirectional_weight<PathVertex>(light, camera, {light_tracing_counts, eta});
         INFO("path of " << k + 1 << " vertices, strategy s = " << s << ", light tracing "
                         << light_tracing_counts);
         CHECK(weight == Approx(d * d / total).epsilon(1e-4));
@@ -172,7 +172,8 @@ TEST_CASE(
         if (d == 0.0) continue;
         subpaths(p, j, light, camera);
         light.back().delta = p.delta[j - 1];
-        const double weight = glint::merge_weight(light, camera, {light_tracing_counts, eta});
+        const double weight =
+            glint::merge_weight<PathVertex>(light, camera, {light_tracing_counts, eta});
         INFO("path of " << k + 1 << " vertices, merge at " << j << ", light tracing "
                         << light_tracing_counts);
         CHECK(weight == Approx(d * d / total).epsilon(1e-4));

@@ -49,6 +49,7 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 template <typename C, bool Merging>
 class BidirectionalExecution {
   static_assert(RenderConfig<C>);
+  using Vertex = PathVertexOf<C>;
 
  public:
   static constexpr const char* kName = Merging ? "vertex connection and merging" : "bidirectional";
@@ -80,7 +81,7 @@ class BidirectionalExecution {
     explicit ThreadState(const BidirectionalExecution& execution)
         : camera(std::size_t(execution.tracer_.subpath_capacity())),
           light(std::size_t(execution.tracer_.subpath_capacity())) {}
-    std::vector<PathVertex> camera, light;
+    std::vector<Vertex> camera, light;
   };
 
   /// The light phase of sample index `sample` (merging only): the light subpaths of that index for
@@ -94,12 +95,12 @@ class BidirectionalExecution {
     std::vector<TraceCounters> thread_counters(std::size_t(std::max(threads, 1)));
     const auto work = [&](TraceCounters& mine) {
       typename C::sampler sampler;
-      std::vector<PathVertex> scratch(std::size_t(tracer_.subpath_capacity())), staging;
+      std::vector<Vertex> scratch(std::size_t(tracer_.subpath_capacity())), staging;
       for (std::size_t chunk = next_chunk.fetch_add(1, std::memory_order_relaxed);
            chunk < light_paths_.chunk_count();
            chunk = next_chunk.fetch_add(1, std::memory_order_relaxed))
         light_paths_.fill_chunk(
-            chunk, scratch, staging, [&](std::size_t path, std::span<PathVertex> v) {
+            chunk, scratch, staging, [&](std::size_t path, std::span<Vertex> v) {
               const std::size_t width = std::size_t(settings_.width);
               sampler.start(PixelSample{std::uint32_t(path % width), std::uint32_t(path / width),
                                         std::uint32_t(sample),
@@ -165,8 +166,8 @@ class BidirectionalExecution {
                                    state, splat, counters);
           } else {
             sample = tracer_.sample(camera_.ray_through(film), filter_density, camera_sampler,
-                                    light_sampler, std::span<PathVertex>(state.camera),
-                                    std::span<PathVertex>(state.light), splat, counters);
+                                    light_sampler, std::span<Vertex>(state.camera),
+                                    std::span<Vertex>(state.light), splat, counters);
           }
           if (std::isfinite(sample.x) && std::isfinite(sample.y) && std::isfinite(sample.z))
             sum += ColorSum(sample);
@@ -187,19 +188,19 @@ class BidirectionalExecution {
                       std::size_t path, ThreadState& state, Splat& splat,
                       TraceCounters& counters) const {
     Color radiance(0.0f);
-    const std::size_t t =
-        tracer_.camera_subpath(ray, filter_density, camera_sampler,
-                               std::span<PathVertex>(state.camera), radiance, counters);
-    const std::span<const PathVertex> z(state.camera.data(), t);
+    const std::size_t t = tracer_.camera_subpath(
+        ray, filter_density, camera_sampler, std::span<Vertex>(state.camera), radiance, counters);
+    const std::span<const Vertex> z(state.camera.data(), t);
     radiance += tracer_.connect(z, light_paths_.path(path), camera_sampler, splat, merge_density_,
                                 counters);
     for (std::size_t end = 2; end <= t; ++end) {
-      const PathVertex& vertex = z[end - 1];
-      if (vertex.kind != PathVertex::Kind::surface || !vertex.joinable()) continue;
-      light_paths_.for_each_near(vertex.point, [&](const LightPathStore::Entry& entry) {
-        radiance += tracer_.merge(z.first(end), light_paths_.path(entry.path), entry.vertex,
-                                  merge_density_);
-      });
+      const Vertex& vertex = z[end - 1];
+      if (vertex.kind != PathVertexKind::surface || !vertex.joinable()) continue;
+      light_paths_.for_each_near(
+          vertex.point, [&](const typename LightPathStore<Vertex>::Entry& entry) {
+            radiance += tracer_.merge(z.first(end), light_paths_.path(entry.path), entry.vertex,
+                                      merge_density_);
+          });
     }
     return radiance;
   }
@@ -228,9 +229,9 @@ class BidirectionalExecution {
   FilmSplatter<C> splatter_;
   BidirectionalPathTracer<C> tracer_;  // holds a reference to camera_, declared before it
   RenderSettings settings_;
-  LightPathStore light_paths_;  ///< the light phase's paths (merging only)
-  float first_merge_radius_;    ///< the merging radius of sample index 0
-  float merge_density_ = 0.0f;  ///< eta of the sample index being rendered
+  LightPathStore<Vertex> light_paths_;  ///< the light phase's paths (merging only)
+  float first_merge_radius_;            ///< the merging radius of sample index 0
+  float merge_density_ = 0.0f;          ///< eta of the sample index being rendered
 };
 
 /// Vertex connection and merging: the bidirectional execution with a light phase per sample

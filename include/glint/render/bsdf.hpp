@@ -105,6 +105,26 @@ concept LobewiseBsdf = Bsdf<B, F, Draws> &&
   { bsdf.lobe_pdf(lobe, direction) } -> std::same_as<F>;
 };
 
+/// A Bsdf at one hit (width 1) that can leave a record of itself at a vertex of a stored subpath
+/// (the bidirectional estimators), to be asked after the hit is gone: record<mode>() gives a
+/// trivially copyable B::Record with
+///  - has_density(): whether some lobe has a density (joins and merges can use the vertex);
+///  - f(facing, wo, wi): f (without the cosine) for light scattered between unit directions wo,
+///    towards where the subpath reached the vertex from, and wi, in the subpath's transport mode;
+///  - pdf(facing, wo, wi): the density per unit solid angle with which the Bsdf samples wi for a
+///    path that arrived from wo (zero where only a delta lobe could).
+/// `facing` is the vertex's normal on the side its subpath arrived from, which the vertex keeps.
+template <typename B, typename Draws>
+concept RecordableBsdf = Bsdf<B, float, Draws> &&
+    std::is_trivially_copyable_v<typename B::Record> &&
+    requires(const B bsdf, const typename B::Record record, const Vec3& direction) {
+  { bsdf.template record<Transport::radiance>() } -> std::same_as<typename B::Record>;
+  { bsdf.template record<Transport::importance>() } -> std::same_as<typename B::Record>;
+  { record.has_density() } -> std::same_as<bool>;
+  { record.f(direction, direction, direction) } -> std::same_as<Color>;
+  { record.pdf(direction, direction, direction) } -> std::same_as<float>;
+};
+
 /// The Bsdf of Config C's material model at width F (one path: float).
 template <typename C, typename F = float>
 using BsdfAt = typename C::material_model::template bsdf<C, F>;

@@ -23,6 +23,8 @@
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
+/// The light subpaths, of vertices of type Vertex (PathVertexOf<C>).
+template <typename Vertex>
 class LightPathStore {
  public:
   /// Paths per chunk: enough to keep a thread busy between its claims, few enough to share a
@@ -47,8 +49,8 @@ class LightPathStore {
   /// calling thread's, reused from chunk to chunk) and are then copied into the chunk, whose
   /// storage so holds what its largest filling needed rather than a doubled guess.
   template <typename Trace>
-  void fill_chunk(std::size_t chunk, std::span<PathVertex> scratch,
-                  std::vector<PathVertex>& staging, Trace&& trace) {
+  void fill_chunk(std::size_t chunk, std::span<Vertex> scratch, std::vector<Vertex>& staging,
+                  Trace&& trace) {
     Chunk& c = chunks_[chunk];
     staging.clear();
     c.starts.clear();
@@ -64,11 +66,10 @@ class LightPathStore {
   }
 
   /// Path `index`'s vertices, its light's point first.
-  std::span<const PathVertex> path(std::size_t index) const {
+  std::span<const Vertex> path(std::size_t index) const {
     const Chunk& c = chunks_[index / kChunkPaths];
     const std::size_t i = index % kChunkPaths;
-    return std::span<const PathVertex>(c.vertices)
-        .subspan(c.starts[i], c.starts[i + 1] - c.starts[i]);
+    return std::span<const Vertex>(c.vertices).subspan(c.starts[i], c.starts[i + 1] - c.starts[i]);
   }
 
   /// The vertices held in all chunks, for what a pass of light paths costs in memory.
@@ -87,20 +88,20 @@ class LightPathStore {
     radius_ = radius;
     inverse_cell_ = 1.0 / (2.0 * double(radius));
     std::size_t count = 0;
-    for_each_mergeable([&](std::size_t, std::size_t, const PathVertex&) { ++count; });
+    for_each_mergeable([&](std::size_t, std::size_t, const Vertex&) { ++count; });
     const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(1, 2 * count));
     mask_ = buckets - 1;
     // Bucket b's count at b + 2; after the running sum, bucket_starts_[b + 1] is where bucket b
     // begins, the cursor its entries advance, which leaves it where bucket b ends: bucket b is
     // then [bucket_starts_[b], bucket_starts_[b + 1]).
     bucket_starts_.assign(buckets + 2, 0);
-    for_each_mergeable([&](std::size_t, std::size_t, const PathVertex& v) {
+    for_each_mergeable([&](std::size_t, std::size_t, const Vertex& v) {
       ++bucket_starts_[bucket(cell(v.point, 0.0)) + 2];
     });
     for (std::size_t b = 2; b < bucket_starts_.size(); ++b)
       bucket_starts_[b] += bucket_starts_[b - 1];
     sorted_.resize(count);
-    for_each_mergeable([&](std::size_t path, std::size_t k, const PathVertex& v) {
+    for_each_mergeable([&](std::size_t path, std::size_t k, const Vertex& v) {
       sorted_[bucket_starts_[bucket(cell(v.point, 0.0)) + 1]++] = {v.point, std::uint32_t(path),
                                                                    std::uint32_t(k)};
     });
@@ -133,7 +134,7 @@ class LightPathStore {
 
  private:
   struct Chunk {
-    std::vector<PathVertex> vertices;
+    std::vector<Vertex> vertices;
     std::vector<std::uint32_t> starts;  ///< each path's first vertex, and the end
   };
 
@@ -156,9 +157,9 @@ class LightPathStore {
   template <typename Visit>
   void for_each_mergeable(Visit&& visit) const {
     for (std::size_t path = 0; path < paths_; ++path) {
-      const std::span<const PathVertex> vertices = this->path(path);
+      const std::span<const Vertex> vertices = this->path(path);
       for (std::size_t k = 1; k < vertices.size(); ++k)
-        if (vertices[k].kind == PathVertex::Kind::surface && vertices[k].joinable())
+        if (vertices[k].kind == PathVertexKind::surface && vertices[k].joinable())
           visit(path, k, vertices[k]);
     }
   }

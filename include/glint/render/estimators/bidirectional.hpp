@@ -12,8 +12,9 @@
 // that a caustic comes from light tracing, a lamp's direct light from next-event estimation and a
 // small lamp seen in a mirror from the camera subpath, each where it samples best.
 //
-// Joins need a vertex that scatters in every direction: the report's diffuse lobe. Mirror and
-// refraction vertices are deltas, passed through by the subpaths; point lights are deltas of
+// Joins need a vertex whose Bsdf has a density (render/bsdf.hpp; the report's diffuse lobe), and
+// each vertex keeps its Bsdf's record to be evaluated when joined. Mirror and refraction vertices
+// are deltas, passed through by the subpaths; point lights are deltas of
 // position, reached only by joins; the camera is a pinhole, reached only by joins. The
 // background is light that only camera subpaths find, so its weight is one.
 //
@@ -48,26 +49,28 @@
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
-/// A vertex of a camera or a light subpath.
-struct PathVertex {
-  enum class Kind : std::uint8_t { camera, point_light, sphere_light, surface };
+/// What a vertex of a subpath is.
+enum class PathVertexKind : std::uint8_t { camera, point_light, sphere_light, surface };
+
+/// A vertex of a camera or a light subpath; `Record` is the material's record of its Bsdf there
+/// (RecordableBsdf), which the weights below never read.
+template <typename Record>
+struct BasicPathVertex {
+  using Kind = PathVertexKind;
   Kind kind = Kind::surface;
   Vec3 point{0.0f};
   /// The sphere's outward normal at the point; zero for the camera and a point light.
   Vec3 normal{0.0f};
-  /// The normal on the side the subpath arrived from (a surface), which its diffuse lobe
-  /// reflects to.
+  /// The normal on the side the subpath arrived from (a surface).
   Vec3 facing{0.0f};
   std::uint32_t sphere = kNoSphere;
   /// The subpath's weight at the vertex: what it carries there over the densities of the
   /// choices that made it (emitted radiance or importance, times f |cos| / pdf at each vertex
   /// before).
   Color beta{0.0f};
-  /// diffuse coefficient x colour at a surface: its diffuse lobe's f is albedo / pi.
-  Color albedo{0.0f};
-  /// The probability with which the material chooses its diffuse lobe (zero: it has none, and
-  /// no join can use the vertex).
-  float diffuse_choice = 0.0f;
+  /// The material at a surface, as the subpath's Bsdf recorded it (none where it does not
+  /// scatter: no join can use the vertex).
+  Record scattering{};
   /// The subpath went on from here through a mirror or refraction: no other strategy could
   /// have chosen its next vertex.
   bool delta = false;
@@ -79,19 +82,24 @@ struct PathVertex {
 
   bool is_light() const { return kind == Kind::point_light || kind == Kind::sphere_light; }
   /// Whether a join may end at this vertex: it scatters (or emits, or sees) in every direction.
-  bool joinable() const { return kind != Kind::surface || diffuse_choice > 0.0f; }
+  bool joinable() const { return kind != Kind::surface || scattering.has_density(); }
 };
+
+/// The vertices of Config C's subpaths.
+template <typename C>
+using PathVertexOf = BasicPathVertex<typename BsdfAt<C>::Record>;
 
 namespace detail {
 
 /// Density per unit area at `to` of a direction from `from` of density `solid_angle_pdf`:
 /// |cos| at `to` over the squared distance (no cosine where `to` is not on a surface).
-inline float area_density(float solid_angle_pdf, const PathVertex& from, const PathVertex& to) {
+template <typename V>
+float area_density(float solid_angle_pdf, const V& from, const V& to) {
   const Vec3 offset = to.point - from.point;
   const float distance2 = glm::dot(offset, offset);
   if (!(distance2 > 0.0f)) return 0.0f;
   float pdf = solid_angle_pdf / distance2;
-  if (to.kind == PathVertex::Kind::surface || to.kind == PathVertex::Kind::sphere_light)
+  if (to.kind == PathVertexKind::surface || to.kind == PathVertexKind::sphere_light)
     pdf *= std::fabs(glm::dot(to.normal, offset)) / std::sqrt(distance2);
   return pdf;
 }
@@ -130,9 +138,10 @@ namespace detail {
 /// built vertex by vertex from the ends outwards: moving vertex v to the other side multiplies
 /// by (its other side's density / its own side's); merging at v, by eta x its other side's
 /// density, once v is on the side it was made by.
-inline float other_strategies(std::span<const PathVertex> light, std::span<const PathVertex> camera,
-                              const JoinDensities& join, const StrategyRules& rules,
-                              bool light_end_joined) {
+template <typename V>
+float other_strategies(std::span<const V> light, std::span<const V> camera,
+                       const JoinDensities& join, const StrategyRules& rules,
+                       bool light_end_joined) {
   const std::size_t s = light.size(), t = camera.size();
   const float eta = rules.merge_density;
   const auto camera_reverse = [&](std::size_t i) {
@@ -151,7 +160,7 @@ inline float other_strategies(std::span<const PathVertex> light, std::span<const
   for (std::size_t i = t - 1; i > 0; --i) {
     const float reverse = nonzero(camera_reverse(i));
     // Merging at camera[i]: not at the path's light end (s = 0: camera[t - 1] is on a lamp).
-    if (eta > 0.0f && camera[i].kind == PathVertex::Kind::surface && !camera_delta(i) &&
+    if (eta > 0.0f && camera[i].kind == PathVertexKind::surface && !camera_delta(i) &&
         (s > 0 || i + 1 < t)) {
       const float merge = ratio * eta * reverse;
       sum += merge * merge;
@@ -165,13 +174,13 @@ inline float other_strategies(std::span<const PathVertex> light, std::span<const
   for (std::size_t i = s; i-- > 0;) {
     const float reverse = nonzero(light_reverse(i));
     // Merging at light[i]: not at the light's own point.
-    if (eta > 0.0f && i > 0 && light[i].kind == PathVertex::Kind::surface && !light_delta(i)) {
+    if (eta > 0.0f && i > 0 && light[i].kind == PathVertexKind::surface && !light_delta(i)) {
       const float merge = ratio * eta * reverse;
       sum += merge * merge;
     }
     ratio *= reverse / nonzero(light[i].pdf_forward);
     const bool before_delta =
-        i > 0 ? light_delta(i - 1) : light[0].kind == PathVertex::Kind::point_light;
+        i > 0 ? light_delta(i - 1) : light[0].kind == PathVertexKind::point_light;
     if (!light_delta(i) && !before_delta) sum += ratio * ratio;
   }
   return sum;
@@ -179,16 +188,18 @@ inline float other_strategies(std::span<const PathVertex> light, std::span<const
 
 /// The power heuristic's weight of the join of light[0, s) and camera[0, t) with `join`'s
 /// reverse densities.
-inline float join_weight(std::span<const PathVertex> light, std::span<const PathVertex> camera,
-                         const JoinDensities& join, const StrategyRules& rules) {
+template <typename V>
+float join_weight(std::span<const V> light, std::span<const V> camera, const JoinDensities& join,
+                  const StrategyRules& rules) {
   return 1.0f / (1.0f + other_strategies(light, camera, join, rules, true));
 }
 
 /// The power heuristic's weight of merging at camera[t - 1] a vertex made by light[s - 1], with
 /// `join`'s reverse densities (camera_end: the density with which light[s - 1] made the light
 /// vertex).
-inline float merge_weight(std::span<const PathVertex> light, std::span<const PathVertex> camera,
-                          const JoinDensities& join, const StrategyRules& rules) {
+template <typename V>
+float merge_weight(std::span<const V> light, std::span<const V> camera, const JoinDensities& join,
+                   const StrategyRules& rules) {
   const float merge = rules.merge_density * nonzero(join.camera_end);
   // The join of light[s - 1] to camera[t - 1] that the ratios are built from is itself a
   // strategy for this path only where light[s - 1] does not go on through a delta.
@@ -197,9 +208,9 @@ inline float merge_weight(std::span<const PathVertex> light, std::span<const Pat
 }
 
 /// The reverse densities the vertices of light[0, s) and camera[0, t) hold themselves.
-inline JoinDensities held_densities(std::span<const PathVertex> light,
-                                    std::span<const PathVertex> camera) {
-  const auto reverse = [](std::span<const PathVertex> path, std::size_t from_end) {
+template <typename V>
+JoinDensities held_densities(std::span<const V> light, std::span<const V> camera) {
+  const auto reverse = [](std::span<const V> path, std::size_t from_end) {
     return path.size() > from_end ? path[path.size() - 1 - from_end].pdf_reverse : 0.0f;
   };
   return {reverse(light, 0), reverse(light, 1), reverse(camera, 0), reverse(camera, 1)};
@@ -213,8 +224,9 @@ inline JoinDensities held_densities(std::span<const PathVertex> light,
 /// reverse densities already set for the join (their deltas are read as cleared: their own next
 /// vertices are not on this path). Exposed for tests, which hold it against an explicit sum over
 /// all strategies.
-inline float bidirectional_weight(std::span<const PathVertex> light,
-                                  std::span<const PathVertex> camera, const StrategyRules& rules) {
+template <typename V>
+float bidirectional_weight(std::span<const V> light, std::span<const V> camera,
+                           const StrategyRules& rules) {
   return detail::join_weight(light, camera, detail::held_densities(light, camera), rules);
 }
 
@@ -222,20 +234,23 @@ inline float bidirectional_weight(std::span<const PathVertex> light,
 /// made (s >= 1, t >= 2): the full path is light[0, s), the merged vertex, camera[0, t - 1),
 /// with the same densities as for bidirectional_weight, camera[t - 1]'s reverse density the one
 /// with which light[s - 1] made the light vertex. Exposed for tests.
-inline float merge_weight(std::span<const PathVertex> light, std::span<const PathVertex> camera,
-                          const StrategyRules& rules) {
+template <typename V>
+float merge_weight(std::span<const V> light, std::span<const V> camera,
+                   const StrategyRules& rules) {
   return detail::merge_weight(light, camera, detail::held_densities(light, camera), rules);
 }
 
-/// Bidirectional path tracing with the policies of Config C: its sampler, Fresnel, sphere shading,
-/// diffuse sampling and path termination, the report's material followed one lobe per vertex
-/// (ReportMaterial::sample) in both subpaths.
+/// Bidirectional path tracing with the policies of Config C: its sampler, material model and path
+/// termination; each subpath samples the hit's Bsdf once per vertex in its own transport mode,
+/// and joins and merges evaluate the vertices' Bsdf records.
 template <RenderConfig C>
 class BidirectionalPathTracer {
-  using Kind = PathVertex::Kind;
+  static_assert(RecordableBsdf<BsdfAt<C>, typename C::sampler>);
 
  public:
   using SamplerType = typename C::sampler;
+  using Vertex = PathVertexOf<C>;
+  using Kind = PathVertexKind;
 
   /// `pixels`: the image's width x height, the light paths of one sample per pixel.
   /// `light_tracing_counts`: whether the pixel filter has an area, so that joins to the camera
@@ -263,8 +278,8 @@ class BidirectionalPathTracer {
   /// `camera_vertices` and `light_vertices` are scratch of subpath_capacity() vertices.
   template <typename Splat>
   Color sample(const Ray& ray, float filter_density, SamplerType& camera_sampler,
-               SamplerType& light_sampler, std::span<PathVertex> camera_vertices,
-               std::span<PathVertex> light_vertices, Splat&& splat, TraceCounters& counters) const {
+               SamplerType& light_sampler, std::span<Vertex> camera_vertices,
+               std::span<Vertex> light_vertices, Splat&& splat, TraceCounters& counters) const {
     Color radiance(0.0f);
     const std::size_t t_count =
         camera_subpath(ray, filter_density, camera_sampler, camera_vertices, radiance, counters);
@@ -278,9 +293,8 @@ class BidirectionalPathTracer {
   /// sample(). `merge_density`: vertex merging's eta where merges compete for the same paths
   /// (merge()), zero for bidirectional path tracing alone.
   template <typename Splat>
-  Color connect(std::span<const PathVertex> z, std::span<const PathVertex> y,
-                SamplerType& camera_sampler, Splat&& splat, float merge_density,
-                TraceCounters& counters) const {
+  Color connect(std::span<const Vertex> z, std::span<const Vertex> y, SamplerType& camera_sampler,
+                Splat&& splat, float merge_density, TraceCounters& counters) const {
     const StrategyRules rules{light_tracing_counts_, merge_density};
     Color radiance(0.0f);
     for (std::size_t t = 1; t <= z.size(); ++t)
@@ -307,21 +321,24 @@ class BidirectionalPathTracer {
   /// brought it, with the uniform kernel over the radius's disc, 1 / merge_density in all. Zero
   /// where the path would be too long, where either vertex does not scatter diffusely, where the
   /// light vertex lies on another sphere or arrived from the other side.
-  Color merge(std::span<const PathVertex> z, std::span<const PathVertex> light_path, std::size_t k,
+  Color merge(std::span<const Vertex> z, std::span<const Vertex> light_path, std::size_t k,
               float merge_density) const {
     const std::size_t t = z.size();
-    const PathVertex& pt = z[t - 1];
-    const PathVertex& photon = light_path[k];
+    const Vertex& pt = z[t - 1];
+    const Vertex& photon = light_path[k];
     if (int(k + t) - 2 > most_vertices_ || photon.sphere != pt.sphere || !pt.joinable())
       return Color(0.0f);
-    const PathVertex& from = light_path[k - 1];
+    const Vertex& from = light_path[k - 1];
     // The light arrives along the light vertex's own incoming direction.
-    const Color value = diffuse_value(pt, from.point - photon.point);
+    const Vec3 arrival = glm::normalize(from.point - photon.point);
+    const Vec3 to_camera_side = towards(pt, z[t - 2]);
+    const Color value = pt.scattering.f(pt.facing, to_camera_side, arrival);
     if (value == Color(0.0f) || glm::dot(photon.facing, pt.facing) <= 0.0f) return Color(0.0f);
-    const std::span<const PathVertex> light = light_path.first(k);
+    const std::span<const Vertex> light = light_path.first(k);
     const StrategyRules rules{light_tracing_counts_, merge_density};
-    const JoinDensities join{density(pt, from), k >= 2 ? light_path[k - 2].pdf_reverse : 0.0f,
-                             photon.pdf_forward, density(pt, z[t - 2])};
+    const JoinDensities join{area_density_from(pt, to_camera_side, from),
+                             k >= 2 ? light_path[k - 2].pdf_reverse : 0.0f, photon.pdf_forward,
+                             area_density_from(pt, arrival, z[t - 2])};
     const float weight = detail::merge_weight(light, z, join, rules);
     return pt.beta * value * photon.beta * (weight / merge_density);
   }
@@ -329,10 +346,9 @@ class BidirectionalPathTracer {
   /// The camera subpath into `z`, z[0] the camera; the background its rays escape to goes
   /// straight to `radiance` (no other strategy finds it). Returns the vertices made.
   std::size_t camera_subpath(const Ray& ray, float filter_density, SamplerType& sampler,
-                             std::span<PathVertex> z, Color& radiance,
-                             TraceCounters& counters) const {
-    PathVertex& eye = z[0];
-    eye = PathVertex{};
+                             std::span<Vertex> z, Color& radiance, TraceCounters& counters) const {
+    Vertex& eye = z[0];
+    eye = Vertex{};
     eye.kind = Kind::camera;
     eye.point = camera_.position();
     eye.beta = Color(1.0f);
@@ -346,15 +362,15 @@ class BidirectionalPathTracer {
 
   /// The light subpath into `y`, y[0] on a light. Returns the vertices made (none where the
   /// scene has no light with power).
-  std::size_t light_subpath(SamplerType& sampler, std::span<PathVertex> y,
+  std::size_t light_subpath(SamplerType& sampler, std::span<Vertex> y,
                             TraceCounters& counters) const {
     if (emission_.empty()) return 0;
     const float u_light = sampler.next_1d();
     const Vec2 u_point = sampler.next_2d();
     const LightOrigin origin = emission_.sample_origin(u_light, u_point);
     const LightRay emitted = LightEmission::sample_ray(origin, sampler.next_2d());
-    PathVertex& source = y[0];
-    source = PathVertex{};
+    Vertex& source = y[0];
+    source = Vertex{};
     source.kind = origin.is_point_light() ? Kind::point_light : Kind::sphere_light;
     source.point = origin.point;
     source.normal = origin.normal;
@@ -374,7 +390,7 @@ class BidirectionalPathTracer {
   /// the path length allows; camera subpaths collect the background in `background`. Returns
   /// the number of vertices.
   std::size_t walk(Ray ray, Color beta, float direction_pdf, SamplerType& sampler,
-                   std::span<PathVertex> v, std::size_t first, Transport mode, Color& background,
+                   std::span<Vertex> v, std::size_t first, Transport mode, Color& background,
                    TraceCounters& counters) const {
     const float start = max_component(beta);
     std::size_t n = first;
@@ -385,9 +401,9 @@ class BidirectionalPathTracer {
         return n;
       }
       const SurfaceInteraction it = context_.interaction(ray, *hit);
-      PathVertex& vertex = v[n];
-      PathVertex& previous = v[n - 1];
-      vertex = PathVertex{};
+      Vertex& vertex = v[n];
+      Vertex& previous = v[n - 1];
+      vertex = Vertex{};
       vertex.kind = Kind::surface;
       vertex.point = it.point;
       vertex.normal = it.outward_normal;
@@ -400,12 +416,11 @@ class BidirectionalPathTracer {
       // light's point are not).
       const int depth = int(n) - 2;
       if (!context_.scatters_at(depth)) return n;
-      const BsdfAt<C> material(it, ray.direction);
-      if (!material.scatters()) return n;
-      if (material.has_lobe(Lobe::diffuse)) {
-        vertex.albedo = material.albedo();
-        vertex.diffuse_choice = material.lobe_probability(Lobe::diffuse);
-      }
+      const BsdfAt<C> bsdf(it, ray.direction);
+      if (!bsdf.scatters()) return n;
+      vertex.scattering = mode == Transport::radiance
+                              ? bsdf.template record<Transport::radiance>()
+                              : bsdf.template record<Transport::importance>();
       // A light subpath's vertex is joined to camera vertices and to the camera; it goes on only
       // where a longer path is allowed. A camera subpath goes on as the path tracer does.
       const bool goes_on = mode == Transport::radiance ? bool(context_.bounces_from(depth))
@@ -420,8 +435,8 @@ class BidirectionalPathTracer {
         }
       }
       const ScatterSample next = mode == Transport::radiance
-                                     ? material.template sample<Transport::radiance>(sampler)
-                                     : material.template sample<Transport::importance>(sampler);
+                                     ? bsdf.template sample<Transport::radiance>(sampler)
+                                     : bsdf.template sample<Transport::importance>(sampler);
       beta *= next.weight();
       if (next.delta) {
         vertex.delta = true;
@@ -429,46 +444,35 @@ class BidirectionalPathTracer {
       } else {
         direction_pdf = next.pdf;
         // The reverse density of the previous vertex: this one choosing it, from the next.
-        previous.pdf_reverse = detail::area_density(
-            scattering_pdf(vertex, previous.point - vertex.point), vertex, previous);
+        previous.pdf_reverse = area_density_from(vertex, next.direction, previous);
       }
       if (!(max_component(beta) > 0.0f)) return n;
       ray = PathContext<C>::continue_rays(it, next.direction);
     }
   }
 
-  /// Density per unit solid angle with which surface vertex `v`'s material chooses `direction`
-  /// (unnormalised) by its diffuse lobe: zero where the direction leaves on the other side.
-  static float scattering_pdf(const PathVertex& v, const Vec3& direction) {
-    const float cosine = glm::dot(glm::normalize(direction), v.facing);
-    if (!(cosine > 0.0f) || !(v.diffuse_choice > 0.0f)) return 0.0f;
-    return v.diffuse_choice * C::diffuse_sampling::pdf(cosine);
+  /// The unit direction from vertex `v` to vertex `to`.
+  static Vec3 towards(const Vertex& v, const Vertex& to) {
+    return glm::normalize(to.point - v.point);
   }
 
-  /// Density per unit area with which vertex `v` produces `to`: a light emitting, a surface
-  /// scattering by its diffuse lobe (whose density does not depend on where the path came from,
-  /// but for the side).
-  float density(const PathVertex& v, const PathVertex& to) const {
-    const Vec3 direction = to.point - v.point;
-    float pdf = 0.0f;
-    if (v.kind == Kind::point_light)
-      pdf = LightEmission::point_direction_pdf();
-    else if (v.kind == Kind::sphere_light)
-      pdf = LightEmission::sphere_direction_pdf(v.normal, glm::normalize(direction));
-    else if (v.kind == Kind::surface)
-      pdf = scattering_pdf(v, direction);
+  /// Density per unit area with which surface vertex `v`, reached from unit direction `arrival`,
+  /// scatters its path to `to` (its Bsdf record's density).
+  static float area_density_from(const Vertex& v, const Vec3& arrival, const Vertex& to) {
+    return detail::area_density(v.scattering.pdf(v.facing, arrival, towards(v, to)), v, to);
+  }
+
+  /// Density per unit area with which light vertex `v` emits towards `to`.
+  static float emission_density(const Vertex& v, const Vertex& to) {
+    const float pdf = v.kind == Kind::point_light
+                          ? LightEmission::point_direction_pdf()
+                          : LightEmission::sphere_direction_pdf(v.normal, towards(v, to));
     return detail::area_density(pdf, v, to);
-  }
-
-  /// f at surface vertex `v` for light going to `direction` (unnormalised): its diffuse lobe's
-  /// albedo / pi on the side it was reached from.
-  static Color diffuse_value(const PathVertex& v, const Vec3& direction) {
-    return glm::dot(direction, v.facing) > 0.0f ? v.albedo * kInvPi : Color(0.0f);
   }
 
   /// Whether nothing lies between surface vertex a and vertex b (on a sphere, or a point
   /// light's point).
-  bool visible(const PathVertex& a, const PathVertex& b, TraceCounters& counters) const {
+  bool visible(const Vertex& a, const Vertex& b, TraceCounters& counters) const {
     const Vec3 offset = b.point - a.point;
     const float distance = std::sqrt(glm::dot(offset, offset));
     if (!(distance > 0.0f)) return false;
@@ -491,22 +495,22 @@ class BidirectionalPathTracer {
   }
 
   /// Strategy s = 0: the camera subpath's last vertex on an emissive sphere.
-  Color emitted(std::span<const PathVertex> z, const StrategyRules& rules) const {
+  Color emitted(std::span<const Vertex> z, const StrategyRules& rules) const {
     const std::size_t t = z.size();
-    const PathVertex& pt = z[t - 1];
+    const Vertex& pt = z[t - 1];
     const std::uint32_t emitter = scene_.surface(pt.sphere).emitter;
     if (emitter == kNotAnEmitter) return Color(0.0f);
     const Color le = scene_.surface(pt.sphere).material.emission;
     // As a light's vertex: its origin density, and its emission towards z[t - 2].
-    const PathVertex light_view = as_light(pt, emitter);
+    const Vertex light_view = as_light(pt, emitter);
     const float weight = detail::join_weight(
-        {}, z, {0.0f, 0.0f, light_view.pdf_forward, density(light_view, z[t - 2])}, rules);
+        {}, z, {0.0f, 0.0f, light_view.pdf_forward, emission_density(light_view, z[t - 2])}, rules);
     return pt.beta * le * weight;
   }
 
   /// Surface vertex `v` on emitter `emitter` seen as the first vertex of a light subpath.
-  PathVertex as_light(const PathVertex& v, std::uint32_t emitter) const {
-    PathVertex light = v;
+  Vertex as_light(const Vertex& v, std::uint32_t emitter) const {
+    Vertex light = v;
     light.kind = Kind::sphere_light;
     light.pdf_forward = emission_.sphere_density(emitter);
     return light;
@@ -514,10 +518,10 @@ class BidirectionalPathTracer {
 
   /// Strategy t = 1: light vertex y[s - 1] joined to the camera.
   template <typename Splat>
-  void join_camera(std::span<const PathVertex> y, const StrategyRules& rules, Splat& splat,
+  void join_camera(std::span<const Vertex> y, const StrategyRules& rules, Splat& splat,
                    TraceCounters& counters) const {
     const std::size_t s = y.size();
-    const PathVertex& qs = y[s - 1];
+    const Vertex& qs = y[s - 1];
     if (!qs.joinable()) return;
     const std::optional<CameraConnection> to_camera = camera_.connect(qs.point);
     if (!to_camera) return;
@@ -525,7 +529,7 @@ class BidirectionalPathTracer {
     if (qs.kind == Kind::sphere_light)
       value = qs.beta * std::fabs(glm::dot(to_camera->direction, qs.normal));
     else if (qs.kind == Kind::surface)
-      value = qs.beta * diffuse_value(qs, to_camera->direction) *
+      value = qs.beta * qs.scattering.f(qs.facing, towards(qs, y[s - 2]), to_camera->direction) *
               std::fabs(glm::dot(to_camera->direction, qs.normal));
     else
       return;  // a point light: the camera cannot see a point
@@ -536,15 +540,17 @@ class BidirectionalPathTracer {
       return;
     // The weight's terms for a filter density of one at the film point: the camera's density
     // for qs is h x solid_angle_density x |cos at qs| / distance^2 / pixels.
-    PathVertex eye{};
+    Vertex eye{};
     eye.kind = Kind::camera;
     eye.point = camera_.position();
     const float camera_pdf =
         detail::area_density(camera_.solid_angle_density(-to_camera->direction) / pixels_, eye, qs);
     // 1 / w - 1 with the camera's density at h = 1: every term holds h^2 once.
-    const float w =
-        detail::join_weight(y, std::span<const PathVertex>(&eye, 1),
-                            {camera_pdf, s >= 2 ? density(qs, y[s - 2]) : 0.0f, 0.0f, 0.0f}, rules);
+    const float w = detail::join_weight(
+        y, std::span<const Vertex>(&eye, 1),
+        {camera_pdf, s >= 2 ? area_density_from(qs, to_camera->direction, y[s - 2]) : 0.0f, 0.0f,
+         0.0f},
+        rules);
     const float filter_weight = 1.0f / w - 1.0f;
     splat(to_camera->film, value * to_camera->importance, filter_weight);
   }
@@ -555,17 +561,18 @@ class BidirectionalPathTracer {
   /// or through a uniform point of its area from inside). The weight counts the light's point
   /// with the light subpaths' density, as pbrt-v4 does, so that all strategies' weights come from
   /// one set of densities and sum to one.
-  Color join_light(std::span<const PathVertex> z, const StrategyRules& rules, SamplerType& sampler,
+  Color join_light(std::span<const Vertex> z, const StrategyRules& rules, SamplerType& sampler,
                    TraceCounters& counters) const {
     const std::size_t t = z.size();
-    const PathVertex& pt = z[t - 1];
+    const Vertex& pt = z[t - 1];
     if (emission_.empty()) return Color(0.0f);
     // The draws come before the test of the vertex, so that every vertex draws the same.
     const float u_light = sampler.next_1d();
     const Vec2 u_point = sampler.next_2d();
     if (pt.kind != Kind::surface || !pt.joinable()) return Color(0.0f);
+    const Vec3 to_camera_side = towards(pt, z[t - 2]);
     const LightEmission::Choice choice = emission_.choose(u_light);
-    PathVertex light{};
+    Vertex light{};
     Color value;
     if (choice.point_light) {
       const PointLight& point = scene_.lights()[choice.index];
@@ -575,7 +582,7 @@ class BidirectionalPathTracer {
       const Vec3 to_light = light.point - pt.point;
       const float distance2 = glm::dot(to_light, to_light);
       const Vec3 direction = to_light / std::sqrt(distance2);
-      value = pt.beta * diffuse_value(pt, direction) *
+      value = pt.beta * pt.scattering.f(pt.facing, to_camera_side, direction) *
               (std::fabs(glm::dot(direction, pt.normal)) * point.intensity /
                (distance2 * choice.probability)) *
               point.color;
@@ -586,7 +593,7 @@ class BidirectionalPathTracer {
       const std::optional<EmitterDirection> sampled = emitter.sample_direction(
           pt.point, emitter.view_from(pt.point, pt.sphere, from_inside), u_point);
       if (!sampled || !(sampled->pdf > 0.0f)) return Color(0.0f);
-      value = pt.beta * diffuse_value(pt, sampled->direction) *
+      value = pt.beta * pt.scattering.f(pt.facing, to_camera_side, sampled->direction) *
               (std::fabs(glm::dot(sampled->direction, pt.normal)) /
                (choice.probability * sampled->pdf)) *
               emitter.radiance;
@@ -603,17 +610,19 @@ class BidirectionalPathTracer {
       light.pdf_forward = emission_.sphere_density(choice.index);
     }
     const float weight = detail::join_weight(
-        std::span<const PathVertex>(&light, 1), z,
-        {density(pt, light), 0.0f, density(light, pt), density(pt, z[t - 2])}, rules);
+        std::span<const Vertex>(&light, 1), z,
+        {area_density_from(pt, to_camera_side, light), 0.0f, emission_density(light, pt),
+         area_density_from(pt, towards(pt, light), z[t - 2])},
+        rules);
     return value * weight;
   }
 
   /// Strategies s, t >= 2: light vertex y[s - 1] joined to camera vertex z[t - 1].
-  Color join(std::span<const PathVertex> y, std::span<const PathVertex> z,
-             const StrategyRules& rules, TraceCounters& counters) const {
+  Color join(std::span<const Vertex> y, std::span<const Vertex> z, const StrategyRules& rules,
+             TraceCounters& counters) const {
     const std::size_t s = y.size(), t = z.size();
-    const PathVertex& qs = y[s - 1];
-    const PathVertex& pt = z[t - 1];
+    const Vertex& qs = y[s - 1];
+    const Vertex& pt = z[t - 1];
     if (qs.kind != Kind::surface || pt.kind != Kind::surface || !qs.joinable() || !pt.joinable())
       return Color(0.0f);
     const Vec3 offset = pt.point - qs.point;
@@ -622,11 +631,14 @@ class BidirectionalPathTracer {
     const Vec3 direction = offset / std::sqrt(distance2);  // from qs to pt
     const float geometry = std::fabs(glm::dot(direction, qs.normal)) *
                            std::fabs(glm::dot(direction, pt.normal)) / distance2;
-    const Color value =
-        qs.beta * diffuse_value(qs, direction) * geometry * diffuse_value(pt, -direction) * pt.beta;
+    const Vec3 to_light_side = towards(qs, y[s - 2]), to_camera_side = towards(pt, z[t - 2]);
+    const Color value = qs.beta * qs.scattering.f(qs.facing, to_light_side, direction) * geometry *
+                        pt.scattering.f(pt.facing, to_camera_side, -direction) * pt.beta;
     if (value == Color(0.0f) || !visible(qs, pt, counters)) return Color(0.0f);
     const float weight = detail::join_weight(
-        y, z, {density(pt, qs), density(qs, y[s - 2]), density(qs, pt), density(pt, z[t - 2])},
+        y, z,
+        {area_density_from(pt, to_camera_side, qs), area_density_from(qs, direction, y[s - 2]),
+         area_density_from(qs, to_light_side, pt), area_density_from(pt, -direction, z[t - 2])},
         rules);
     return value * weight;
   }

@@ -50,6 +50,28 @@ class ReportMaterial {
     }
   }
 
+  /// The material at a vertex of a stored subpath (RecordableBsdf): its diffuse lobe, the only
+  /// one with a value and a density at given directions, on the side the subpath arrived from.
+  /// Lambertian, so the same in both transport modes and independent of wo.
+  struct Record {
+    Color albedo{0.0f};           ///< diffuse coefficient x colour: f is albedo / pi
+    float diffuse_choice = 0.0f;  ///< the probability with which sample() chooses the lobe
+
+    bool has_density() const { return diffuse_choice > 0.0f; }
+    Color f(const Vec3& facing, const Vec3& /*wo*/, const Vec3& wi) const {
+      return glm::dot(wi, facing) > 0.0f ? albedo * kInvPi : Color(0.0f);
+    }
+    float pdf(const Vec3& facing, const Vec3& /*wo*/, const Vec3& wi) const {
+      const float cosine = glm::dot(wi, facing);
+      if (!(cosine > 0.0f) || !(diffuse_choice > 0.0f)) return 0.0f;
+      return diffuse_choice * C::diffuse_sampling::pdf(cosine);
+    }
+  };
+  template <Transport mode>
+  Record record() const requires(kLanesOf<F> == 1) {
+    return {albedo_, s_.diffuse / total_};
+  }
+
   /// Whether the surface reflects at all (some lobe has a positive coefficient).
   M scatters() const { return total_ > 0.0f; }
   /// Whether the diffuse lobe is present: the one with a density.
