@@ -177,6 +177,13 @@ TEST_CASE(
         INFO("path of " << k + 1 << " vertices, merge at " << j << ", light tracing "
                         << light_tracing_counts);
         CHECK(weight == Approx(d * d / total).epsilon(1e-4));
+        // The same weight from the vertices next to the merge and the strategy tails.
+        const glint::StrategyRules rules{light_tracing_counts, eta};
+        glint::detail::strategy_tails<PathVertex>(light, true, rules);
+        glint::detail::strategy_tails<PathVertex>(camera, false, rules);
+        const double from_tails = glint::detail::merge_weight_from_tails<PathVertex>(
+            light, camera, glint::detail::held_densities<PathVertex>(light, camera), rules);
+        CHECK(from_tails == Approx(d * d / total).epsilon(1e-4));
         weights += weight;
         ++merges_checked;
       }

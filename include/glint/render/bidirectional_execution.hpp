@@ -106,7 +106,9 @@ class BidirectionalExecution {
                                         std::uint32_t(sample),
                                         std::uint32_t(settings_.samples_per_pixel),
                                         settings_.seed ^ LightTracingExecution<C>::kLightStream});
-              return tracer_.light_subpath(sampler, v, mine);
+              const std::size_t n = tracer_.light_subpath(sampler, v, mine);
+              tracer_.prepare_merges(v.first(n), true, merge_density_);
+              return n;
             });
     };
     {
@@ -190,6 +192,7 @@ class BidirectionalExecution {
     Color radiance(0.0f);
     const std::size_t t = tracer_.camera_subpath(
         ray, filter_density, camera_sampler, std::span<Vertex>(state.camera), radiance, counters);
+    tracer_.prepare_merges(std::span<Vertex>(state.camera.data(), t), false, merge_density_);
     const std::span<const Vertex> z(state.camera.data(), t);
     radiance += tracer_.connect(z, light_paths_.path(path), camera_sampler, splat, merge_density_,
                                 counters);

@@ -79,6 +79,10 @@ struct BasicPathVertex {
   float pdf_forward = 0.0f;
   /// Density of this vertex had the other subpath produced it, per unit area.
   float pdf_reverse = 0.0f;
+  /// For vertex merging: what the other strategies' squared density ratios over this vertex and
+  /// those before it on its subpath add to a weight's denominator, per unit of the squared ratio
+  /// at this vertex (detail::strategy_tails). Set once the subpath is complete.
+  float strategy_tail = 0.0f;
 
   bool is_light() const { return kind == Kind::point_light || kind == Kind::sphere_light; }
   /// Whether a join may end at this vertex: it scatters (or emits, or sees) in every direction.
@@ -207,6 +211,71 @@ float merge_weight(std::span<const V> light, std::span<const V> camera, const Jo
   return merge * merge / (join_counts + other_strategies(light, camera, join, rules, false));
 }
 
+/// Sets each vertex's strategy_tail on subpath `v` (light or camera side, by `light_side`),
+/// whose densities are its own: the sum that other_strategies' loop over that side adds for
+/// v[0..m] when it reaches v[m] with a ratio of one, built from v[m - 1]'s as
+///   tail(m) = merge(m) (eta reverse_m)^2 + (reverse_m / forward_m)^2 (join(m) + tail(m - 1)),
+/// merge(m) and join(m) being whether merging at v[m] and the join before it are strategies. A
+/// merge's weight then needs only the vertices next to it (merge_weight_from_tails). The last
+/// vertex's tail is left unset: its reverse density is the join's.
+template <typename V>
+void strategy_tails(std::span<V> v, bool light_side, const StrategyRules& rules) {
+  const float eta = rules.merge_density;
+  float tail = 0.0f;
+  for (std::size_t m = light_side ? 0 : 1; m + 1 < v.size(); ++m) {
+    const float reverse = nonzero(v[m].pdf_reverse);
+    const bool merges =
+        eta > 0.0f && (!light_side || m > 0) && v[m].kind == PathVertexKind::surface && !v[m].delta;
+    const bool joins =
+        light_side
+            ? !v[m].delta && !(m > 0 ? v[m - 1].delta : v[0].kind == PathVertexKind::point_light)
+            : !v[m].delta && !v[m - 1].delta && (m > 1 || rules.light_tracing_counts);
+    const float ratio = reverse / nonzero(v[m].pdf_forward);
+    tail = (merges ? (eta * reverse) * (eta * reverse) : 0.0f) +
+           ratio * ratio * ((joins ? 1.0f : 0.0f) + tail);
+    v[m].strategy_tail = tail;
+  }
+}
+
+/// merge_weight for light[0, s) and camera[0, t) from the vertices next to the merge and the
+/// strategy tails of those further away (strategy_tails): the same sum in another order, in time
+/// independent of the subpaths' lengths.
+template <typename V>
+float merge_weight_from_tails(std::span<const V> light, std::span<const V> camera,
+                              const JoinDensities& join, const StrategyRules& rules) {
+  const std::size_t s = light.size(), t = camera.size();
+  const float eta = rules.merge_density;
+  const auto squared = [](float x) { return x * x; };
+  // The camera side: the merged vertex camera[t - 1] (its delta cleared), then camera[t - 2].
+  float sum = 0.0f;
+  const float camera_end = nonzero(join.camera_end);
+  if (eta > 0.0f && camera[t - 1].kind == PathVertexKind::surface) sum += squared(eta * camera_end);
+  float ratio = camera_end / nonzero(camera[t - 1].pdf_forward);
+  if (!camera[t - 2].delta && (t > 2 || rules.light_tracing_counts)) sum += squared(ratio);
+  if (t >= 3) {
+    const V& before = camera[t - 2];
+    const float reverse = nonzero(join.camera_before);
+    if (eta > 0.0f && before.kind == PathVertexKind::surface && !before.delta)
+      sum += squared(ratio * eta * reverse);
+    ratio *= reverse / nonzero(before.pdf_forward);
+    if (!before.delta && !camera[t - 3].delta && (t > 3 || rules.light_tracing_counts))
+      sum += squared(ratio);
+    if (t >= 4) sum += squared(ratio) * camera[t - 3].strategy_tail;
+  }
+  // The light side: light[s - 1], the vertex the merged one was made by, then the rest.
+  const V& from = light[s - 1];
+  const float light_end = nonzero(join.light_end);
+  if (eta > 0.0f && s > 1 && from.kind == PathVertexKind::surface && !from.delta)
+    sum += squared(eta * light_end);
+  ratio = light_end / nonzero(from.pdf_forward);
+  const bool before_delta =
+      s > 1 ? light[s - 2].delta : light[0].kind == PathVertexKind::point_light;
+  if (!from.delta && !before_delta) sum += squared(ratio);
+  if (s >= 2) sum += squared(ratio) * light[s - 2].strategy_tail;
+  const float merge = eta * camera_end;
+  return merge * merge / ((from.delta ? 0.0f : 1.0f) + sum);
+}
+
 /// The reverse densities the vertices of light[0, s) and camera[0, t) hold themselves.
 template <typename V>
 JoinDensities held_densities(std::span<const V> light, std::span<const V> camera) {
@@ -320,7 +389,8 @@ class BidirectionalPathTracer {
   /// the merging radius of it, for the pixel: its weight, over the light paths that could have
   /// brought it, with the uniform kernel over the radius's disc, 1 / merge_density in all. Zero
   /// where the path would be too long, where either vertex does not scatter diffusely, where the
-  /// light vertex lies on another sphere or arrived from the other side.
+  /// light vertex lies on another sphere or arrived from the other side. Both subpaths' strategy
+  /// tails must be set for `merge_density` (prepare_merges).
   Color merge(std::span<const Vertex> z, std::span<const Vertex> light_path, std::size_t k,
               float merge_density) const {
     const std::size_t t = z.size();
@@ -339,8 +409,14 @@ class BidirectionalPathTracer {
     const JoinDensities join{area_density_from(pt, to_camera_side, from),
                              k >= 2 ? light_path[k - 2].pdf_reverse : 0.0f, photon.pdf_forward,
                              area_density_from(pt, arrival, z[t - 2])};
-    const float weight = detail::merge_weight(light, z, join, rules);
+    const float weight = detail::merge_weight_from_tails(light, z, join, rules);
     return pt.beta * value * photon.beta * (weight / merge_density);
+  }
+
+  /// Sets the strategy tails of subpath `v` (a light subpath, or a camera one) for merges of
+  /// density factor `merge_density` (merge()).
+  void prepare_merges(std::span<Vertex> v, bool light_side, float merge_density) const {
+    detail::strategy_tails(v, light_side, StrategyRules{light_tracing_counts_, merge_density});
   }
 
   /// The camera subpath into `z`, z[0] the camera; the background its rays escape to goes
