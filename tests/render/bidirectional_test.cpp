@@ -177,13 +177,16 @@ TEST_CASE(
         INFO("path of " << k + 1 << " vertices, merge at " << j << ", light tracing "
                         << light_tracing_counts);
         CHECK(weight == Approx(d * d / total).epsilon(1e-4));
-        // The same weight from the vertices next to the merge and the strategy tails.
+        // The same weight from the vertices next to the merge and the strategy tails, as merging
+        // computes it.
         const glint::StrategyRules rules{light_tracing_counts, eta};
         glint::detail::strategy_tails<PathVertex>(light, true, rules);
         glint::detail::strategy_tails<PathVertex>(camera, false, rules);
-        const double from_tails = glint::detail::merge_weight_from_tails<PathVertex>(
-            light, camera, glint::detail::held_densities<PathVertex>(light, camera), rules);
-        CHECK(from_tails == Approx(d * d / total).epsilon(1e-4));
+        const double from_factors = glint::detail::merge_weight_from_factors(
+            glint::detail::held_densities<PathVertex>(light, camera),
+            glint::detail::merge_camera_factors<PathVertex>(camera, rules),
+            glint::detail::merge_light_factor<PathVertex>(light, rules), light.back().delta, rules);
+        CHECK(from_factors == Approx(d * d / total).epsilon(1e-4));
         weights += weight;
         ++merges_checked;
       }

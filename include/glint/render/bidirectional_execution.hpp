@@ -100,14 +100,16 @@ class BidirectionalExecution {
            chunk < light_paths_.chunk_count();
            chunk = next_chunk.fetch_add(1, std::memory_order_relaxed))
         light_paths_.fill_chunk(
-            chunk, scratch, staging, [&](std::size_t path, std::span<Vertex> v) {
+            chunk, scratch, staging,
+            [&](std::size_t path, std::span<Vertex> v, std::vector<MergeCandidate>& candidates) {
               const std::size_t width = std::size_t(settings_.width);
               sampler.start(PixelSample{std::uint32_t(path % width), std::uint32_t(path / width),
                                         std::uint32_t(sample),
                                         std::uint32_t(settings_.samples_per_pixel),
                                         settings_.seed ^ LightTracingExecution<C>::kLightStream});
               const std::size_t n = tracer_.light_subpath(sampler, v, mine);
-              tracer_.prepare_merges(v.first(n), true, merge_density_);
+              tracer_.merge_candidates(v.first(n), merge_density_,
+                                       [&](const MergeCandidate& c) { candidates.push_back(c); });
               return n;
             });
     };
@@ -192,18 +194,17 @@ class BidirectionalExecution {
     Color radiance(0.0f);
     const std::size_t t = tracer_.camera_subpath(
         ray, filter_density, camera_sampler, std::span<Vertex>(state.camera), radiance, counters);
-    tracer_.prepare_merges(std::span<Vertex>(state.camera.data(), t), false, merge_density_);
+    tracer_.prepare_camera_merges(std::span<Vertex>(state.camera.data(), t), merge_density_);
     const std::span<const Vertex> z(state.camera.data(), t);
     radiance += tracer_.connect(z, light_paths_.path(path), camera_sampler, splat, merge_density_,
                                 counters);
     for (std::size_t end = 2; end <= t; ++end) {
-      const Vertex& vertex = z[end - 1];
-      if (vertex.kind != PathVertexKind::surface || !vertex.joinable()) continue;
-      light_paths_.for_each_near(
-          vertex.point, [&](const typename LightPathStore<Vertex>::Entry& entry) {
-            radiance += tracer_.merge(z.first(end), light_paths_.path(entry.path), entry.vertex,
-                                      merge_density_);
-          });
+      const std::optional<MergeTarget<Vertex>> target =
+          tracer_.merge_target(z.first(end), merge_density_);
+      if (!target) continue;
+      light_paths_.for_each_near(target->vertex->point, [&](const MergeCandidate& candidate) {
+        radiance += tracer_.merge(*target, candidate);
+      });
     }
     return radiance;
   }
@@ -232,9 +233,9 @@ class BidirectionalExecution {
   FilmSplatter<C> splatter_;
   BidirectionalPathTracer<C> tracer_;  // holds a reference to camera_, declared before it
   RenderSettings settings_;
-  LightPathStore<Vertex> light_paths_;  ///< the light phase's paths (merging only)
-  float first_merge_radius_;            ///< the merging radius of sample index 0
-  float merge_density_ = 0.0f;          ///< eta of the sample index being rendered
+  LightPathStore<Vertex, MergeCandidate> light_paths_;  ///< the light phase's paths (merging only)
+  float first_merge_radius_;                            ///< the merging radius of sample index 0
+  float merge_density_ = 0.0f;                          ///< eta of the sample index being rendered
 };
 
 /// Vertex connection and merging: the bidirectional execution with a light phase per sample

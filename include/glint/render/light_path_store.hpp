@@ -1,7 +1,8 @@
 #pragma once
 // The light subpaths of one iteration of vertex connection and merging
 // (render/bidirectional_execution.hpp): one path per pixel, kept by path index, and a hash grid of
-// the vertices at which their light may be merged with a camera path's.
+// the vertices at which their light may be merged with a camera path's, each as a candidate that
+// holds what a merge needs, so that a query reads the grid alone.
 //
 // The store is filled in chunks of consecutive paths, each chunk by one thread into storage of
 // its own, so what a chunk holds depends on its paths' indices only. The grid is a counting sort of
@@ -23,20 +24,14 @@
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
-/// The light subpaths, of vertices of type Vertex (PathVertexOf<C>).
-template <typename Vertex>
+/// The light subpaths, of vertices of type Vertex (PathVertexOf<C>), and their merge candidates
+/// of type Candidate (MergeCandidate: with a `point`).
+template <typename Vertex, typename Candidate>
 class LightPathStore {
  public:
   /// Paths per chunk: enough to keep a thread busy between its claims, few enough to share a
   /// pass of a small image among threads.
   static constexpr std::size_t kChunkPaths = 512;
-
-  /// A vertex that light may be merged at: the `vertex`th of path `path`, at `point`.
-  struct Entry {
-    Vec3 point;
-    std::uint32_t path;
-    std::uint32_t vertex;
-  };
 
   explicit LightPathStore(std::size_t paths)
       : paths_(paths), chunks_((paths + kChunkPaths - 1) / kChunkPaths) {}
@@ -44,21 +39,23 @@ class LightPathStore {
   std::size_t path_count() const { return paths_; }
   std::size_t chunk_count() const { return chunks_.size(); }
 
-  /// Refills chunk `chunk` with its paths: trace(path index, scratch) writes a path's vertices to
-  /// the front of `scratch` and returns how many it wrote. The paths gather in `staging` (the
-  /// calling thread's, reused from chunk to chunk) and are then copied into the chunk, whose
-  /// storage so holds what its largest filling needed rather than a doubled guess.
+  /// Refills chunk `chunk` with its paths: trace(path index, scratch, candidates) writes a
+  /// path's vertices to the front of `scratch`, appends its merge candidates to `candidates` and
+  /// returns how many vertices it wrote. The paths gather in `staging` (the calling thread's,
+  /// reused from chunk to chunk) and are then copied into the chunk, whose storage so holds what
+  /// its largest filling needed rather than a doubled guess.
   template <typename Trace>
   void fill_chunk(std::size_t chunk, std::span<Vertex> scratch, std::vector<Vertex>& staging,
                   Trace&& trace) {
     Chunk& c = chunks_[chunk];
     staging.clear();
     c.starts.clear();
+    c.candidates.clear();
     const std::size_t first = chunk * kChunkPaths;
     const std::size_t last = std::min(first + kChunkPaths, paths_);
     for (std::size_t path = first; path < last; ++path) {
       c.starts.push_back(std::uint32_t(staging.size()));
-      const std::size_t count = trace(path, scratch);
+      const std::size_t count = trace(path, scratch, c.candidates);
       staging.insert(staging.end(), scratch.begin(), scratch.begin() + std::ptrdiff_t(count));
     }
     c.starts.push_back(std::uint32_t(staging.size()));
@@ -80,35 +77,39 @@ class LightPathStore {
     return count;
   }
 
-  /// Indexes, for queries of radius `radius`, every vertex after a path's first at which light
-  /// may be merged: on a sphere, with a diffuse lobe. A counting sort by bucket written straight
-  /// into the grid (no copy of the entries in path order): one pass counts the vertices, one
-  /// counts each bucket's, one places them, each bucket's in path and vertex order.
+  /// The merge candidates in the grid, for what a pass of light paths costs in memory.
+  std::size_t candidate_count() const { return sorted_.size(); }
+
+  /// Indexes the chunks' merge candidates for queries of radius `radius`, and releases the
+  /// chunks' copies. A counting sort by bucket written straight into the grid: one pass counts
+  /// each bucket's candidates, one places them, each bucket's in path and vertex order.
   void build_grid(float radius) {
     radius_ = radius;
     inverse_cell_ = 1.0 / (2.0 * double(radius));
     std::size_t count = 0;
-    for_each_mergeable([&](std::size_t, std::size_t, const Vertex&) { ++count; });
+    for (const Chunk& c : chunks_)
+      count += c.candidates.size();
     const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(1, 2 * count));
     mask_ = buckets - 1;
     // Bucket b's count at b + 2; after the running sum, bucket_starts_[b + 1] is where bucket b
     // begins, the cursor its entries advance, which leaves it where bucket b ends: bucket b is
     // then [bucket_starts_[b], bucket_starts_[b + 1]).
     bucket_starts_.assign(buckets + 2, 0);
-    for_each_mergeable([&](std::size_t, std::size_t, const Vertex& v) {
-      ++bucket_starts_[bucket(cell(v.point, 0.0)) + 2];
-    });
+    for (const Chunk& c : chunks_)
+      for (const Candidate& candidate : c.candidates)
+        ++bucket_starts_[bucket(cell(candidate.point, 0.0)) + 2];
     for (std::size_t b = 2; b < bucket_starts_.size(); ++b)
       bucket_starts_[b] += bucket_starts_[b - 1];
     sorted_.resize(count);
-    for_each_mergeable([&](std::size_t path, std::size_t k, const Vertex& v) {
-      sorted_[bucket_starts_[bucket(cell(v.point, 0.0)) + 1]++] = {v.point, std::uint32_t(path),
-                                                                   std::uint32_t(k)};
-    });
+    for (Chunk& c : chunks_) {
+      for (const Candidate& candidate : c.candidates)
+        sorted_[bucket_starts_[bucket(cell(candidate.point, 0.0)) + 1]++] = candidate;
+      std::vector<Candidate>().swap(c.candidates);
+    }
   }
 
-  /// Calls visit(entry) for each indexed vertex within the radius of `point` (strictly), in an
-  /// order fixed by the grid.
+  /// Calls visit(candidate) for each indexed candidate within the radius of `point` (strictly),
+  /// in an order fixed by the grid.
   template <typename Visit>
   void for_each_near(const Vec3& point, Visit&& visit) const {
     // The cells are twice the radius wide: the ball around `point` meets two of them along each
@@ -136,6 +137,7 @@ class LightPathStore {
   struct Chunk {
     std::vector<Vertex> vertices;
     std::vector<std::uint32_t> starts;  ///< each path's first vertex, and the end
+    std::vector<Candidate> candidates;  ///< until build_grid, in path and vertex order
   };
 
   /// The cell holding `point` shifted by `shift` cells along each axis.
@@ -152,24 +154,12 @@ class LightPathStore {
     return std::size_t((h ^ (h >> 29)) & mask_);
   }
 
-  /// Calls visit(path, k, vertex) for every vertex that build_grid indexes, in path and vertex
-  /// order.
-  template <typename Visit>
-  void for_each_mergeable(Visit&& visit) const {
-    for (std::size_t path = 0; path < paths_; ++path) {
-      const std::span<const Vertex> vertices = this->path(path);
-      for (std::size_t k = 1; k < vertices.size(); ++k)
-        if (vertices[k].kind == PathVertexKind::surface && vertices[k].joinable())
-          visit(path, k, vertices[k]);
-    }
-  }
-
   std::size_t paths_;
   std::vector<Chunk> chunks_;
   float radius_ = 0.0f;
   double inverse_cell_ = 0.0;
   std::size_t mask_ = 0;
-  std::vector<Entry> sorted_;
+  std::vector<Candidate> sorted_;
   std::vector<std::uint32_t> bucket_starts_;
 };
 

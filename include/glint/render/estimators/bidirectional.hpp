@@ -216,7 +216,7 @@ float merge_weight(std::span<const V> light, std::span<const V> camera, const Jo
 /// v[0..m] when it reaches v[m] with a ratio of one, built from v[m - 1]'s as
 ///   tail(m) = merge(m) (eta reverse_m)^2 + (reverse_m / forward_m)^2 (join(m) + tail(m - 1)),
 /// merge(m) and join(m) being whether merging at v[m] and the join before it are strategies. A
-/// merge's weight then needs only the vertices next to it (merge_weight_from_tails). The last
+/// merge's weight then needs only the vertices next to it (merge_weight_from_factors). The last
 /// vertex's tail is left unset: its reverse density is the join's.
 template <typename V>
 void strategy_tails(std::span<V> v, bool light_side, const StrategyRules& rules) {
@@ -237,43 +237,73 @@ void strategy_tails(std::span<V> v, bool light_side, const StrategyRules& rules)
   }
 }
 
-/// merge_weight for light[0, s) and camera[0, t) from the vertices next to the merge and the
-/// strategy tails of those further away (strategy_tails): the same sum in another order, in time
-/// independent of the subpaths' lengths.
+/// What merging at camera[t - 1] adds to the weight's denominator from the camera side, per
+/// squared density camera_end (c): c^2 (p + camera_before^2 q). The same for every light vertex
+/// merged there.
+struct MergeCameraFactors {
+  float p = 0.0f, q = 0.0f;
+};
+
+/// merge_weight's camera side for merges at camera[t - 1] (t >= 2), from the vertices next to it
+/// and camera[t - 3]'s strategy tail (strategy_tails): the terms of other_strategies' camera loop
+/// at the merged vertex (its delta cleared) and at the one before, then the tail, each with
+/// camera_end and camera_before factored out.
 template <typename V>
-float merge_weight_from_tails(std::span<const V> light, std::span<const V> camera,
-                              const JoinDensities& join, const StrategyRules& rules) {
-  const std::size_t s = light.size(), t = camera.size();
-  const float eta = rules.merge_density;
-  const auto squared = [](float x) { return x * x; };
-  // The camera side: the merged vertex camera[t - 1] (its delta cleared), then camera[t - 2].
-  float sum = 0.0f;
-  const float camera_end = nonzero(join.camera_end);
-  if (eta > 0.0f && camera[t - 1].kind == PathVertexKind::surface) sum += squared(eta * camera_end);
-  float ratio = camera_end / nonzero(camera[t - 1].pdf_forward);
-  if (!camera[t - 2].delta && (t > 2 || rules.light_tracing_counts)) sum += squared(ratio);
+MergeCameraFactors merge_camera_factors(std::span<const V> camera, const StrategyRules& rules) {
+  const std::size_t t = camera.size();
+  const float eta2 = rules.merge_density * rules.merge_density;
+  const V& end = camera[t - 1];
+  const float end_forward2 = nonzero(end.pdf_forward) * nonzero(end.pdf_forward);
+  MergeCameraFactors factors;
+  if (rules.merge_density > 0.0f && end.kind == PathVertexKind::surface) factors.p = eta2;
+  if (!camera[t - 2].delta && (t > 2 || rules.light_tracing_counts))
+    factors.p += 1.0f / end_forward2;
   if (t >= 3) {
     const V& before = camera[t - 2];
-    const float reverse = nonzero(join.camera_before);
-    if (eta > 0.0f && before.kind == PathVertexKind::surface && !before.delta)
-      sum += squared(ratio * eta * reverse);
-    ratio *= reverse / nonzero(before.pdf_forward);
+    float inner = 0.0f;
+    if (rules.merge_density > 0.0f && before.kind == PathVertexKind::surface && !before.delta)
+      inner = eta2;
+    float behind = t >= 4 ? camera[t - 3].strategy_tail : 0.0f;
     if (!before.delta && !camera[t - 3].delta && (t > 3 || rules.light_tracing_counts))
-      sum += squared(ratio);
-    if (t >= 4) sum += squared(ratio) * camera[t - 3].strategy_tail;
+      behind += 1.0f;
+    inner += behind / (nonzero(before.pdf_forward) * nonzero(before.pdf_forward));
+    factors.q = inner / end_forward2;
   }
-  // The light side: light[s - 1], the vertex the merged one was made by, then the rest.
+  return factors;
+}
+
+/// merge_weight's light side for a merge of the vertex that light[s - 1] made: what it adds to
+/// the weight's denominator per squared density light_end, from light[s - 1] and
+/// light[s - 2]'s strategy tail (strategy_tails).
+template <typename V>
+float merge_light_factor(std::span<const V> light, const StrategyRules& rules) {
+  const std::size_t s = light.size();
   const V& from = light[s - 1];
-  const float light_end = nonzero(join.light_end);
-  if (eta > 0.0f && s > 1 && from.kind == PathVertexKind::surface && !from.delta)
-    sum += squared(eta * light_end);
-  ratio = light_end / nonzero(from.pdf_forward);
+  float factor = 0.0f;
+  if (rules.merge_density > 0.0f && s > 1 && from.kind == PathVertexKind::surface && !from.delta)
+    factor = rules.merge_density * rules.merge_density;
   const bool before_delta =
       s > 1 ? light[s - 2].delta : light[0].kind == PathVertexKind::point_light;
-  if (!from.delta && !before_delta) sum += squared(ratio);
-  if (s >= 2) sum += squared(ratio) * light[s - 2].strategy_tail;
-  const float merge = eta * camera_end;
-  return merge * merge / ((from.delta ? 0.0f : 1.0f) + sum);
+  float behind = s >= 2 ? light[s - 2].strategy_tail : 0.0f;
+  if (!from.delta && !before_delta) behind += 1.0f;
+  return factor + behind / (nonzero(from.pdf_forward) * nonzero(from.pdf_forward));
+}
+
+/// merge_weight from its factors: `join`'s camera_end, camera_before and light_end, the camera
+/// side's factors and the light side's, and whether light[s - 1] went on through a delta (then
+/// the join of light[s - 1] to the merged vertex is no strategy). The same sum as other_strategies
+/// in another order, in time independent of the subpaths' lengths.
+inline float merge_weight_from_factors(const JoinDensities& join, const MergeCameraFactors& camera,
+                                       float light_factor, bool after_delta,
+                                       const StrategyRules& rules) {
+  const float camera_end = nonzero(join.camera_end);
+  const float camera_before = nonzero(join.camera_before);
+  const float light_end = nonzero(join.light_end);
+  const float merge = rules.merge_density * camera_end;
+  return merge * merge /
+         ((after_delta ? 0.0f : 1.0f) +
+          camera_end * camera_end * (camera.p + camera_before * camera_before * camera.q) +
+          light_end * light_end * light_factor);
 }
 
 /// The reverse densities the vertices of light[0, s) and camera[0, t) hold themselves.
@@ -308,6 +338,36 @@ float merge_weight(std::span<const V> light, std::span<const V> camera,
                    const StrategyRules& rules) {
   return detail::merge_weight(light, camera, detail::held_densities(light, camera), rules);
 }
+
+/// A light vertex at which camera vertices may merge, with everything a merge needs of its light
+/// subpath (BidirectionalPathTracer::merge_candidates), so that merging reads nothing else.
+struct MergeCandidate {
+  Vec3 point;
+  std::uint32_t sphere;
+  Color beta;         ///< the light subpath's weight at the vertex
+  Vec3 arrival;       ///< unit direction towards the vertex the light came from
+  float pdf_forward;  ///< the density with which the light subpath made the vertex, per unit area
+  /// The light side's share of the weight's denominator per squared density, per unit solid
+  /// angle, with which the merging vertex's Bsdf chooses `arrival` (merge_light_factor, with the
+  /// geometry of the edge to the vertex before).
+  float light_factor;
+  std::uint16_t vertex;  ///< its index on its subpath
+  bool outward;          ///< the light arrived on the sphere's outer side
+  bool after_delta;      ///< the vertex before went on through a delta
+};
+
+/// A camera vertex merging, with what is the same for every candidate
+/// (BidirectionalPathTracer::merge_target).
+template <typename V>
+struct MergeTarget {
+  const V* vertex;
+  Vec3 toward_camera;     ///< unit direction towards the camera subpath's vertex before
+  float camera_geometry;  ///< per unit solid angle to per unit area at the vertex before
+  detail::MergeCameraFactors factors;
+  int camera_vertices;  ///< t: the vertex is the subpath's t-th
+  bool outward;         ///< the camera subpath arrived on the sphere's outer side
+  float merge_density;
+};
 
 /// Bidirectional path tracing with the policies of Config C: its sampler, material model and path
 /// termination; each subpath samples the hit's Bsdf once per vertex in its own transport mode,
@@ -384,39 +444,86 @@ class BidirectionalPathTracer {
     return radiance;
   }
 
-  /// Vertex merging (Georgiev et al. 2012; Hachisuka et al. 2012): the light that vertex k >= 1
-  /// of light subpath `light_path` carries to camera vertex z[t - 1] (t >= 2) when it lies within
-  /// the merging radius of it, for the pixel: its weight, over the light paths that could have
-  /// brought it, with the uniform kernel over the radius's disc, 1 / merge_density in all. Zero
-  /// where the path would be too long, where either vertex does not scatter diffusely, where the
-  /// light vertex lies on another sphere or arrived from the other side. Both subpaths' strategy
-  /// tails must be set for `merge_density` (prepare_merges).
-  Color merge(std::span<const Vertex> z, std::span<const Vertex> light_path, std::size_t k,
-              float merge_density) const {
-    const std::size_t t = z.size();
-    const Vertex& pt = z[t - 1];
-    const Vertex& photon = light_path[k];
-    if (int(k + t) - 2 > most_vertices_ || photon.sphere != pt.sphere || !pt.joinable())
-      return Color(0.0f);
-    const Vertex& from = light_path[k - 1];
-    // The light arrives along the light vertex's own incoming direction.
-    const Vec3 arrival = glm::normalize(from.point - photon.point);
-    const Vec3 to_camera_side = towards(pt, z[t - 2]);
-    const Color value = pt.scattering.f(pt.facing, to_camera_side, arrival);
-    if (value == Color(0.0f) || glm::dot(photon.facing, pt.facing) <= 0.0f) return Color(0.0f);
-    const std::span<const Vertex> light = light_path.first(k);
+  /// Vertex merging (Georgiev et al. 2012; Hachisuka et al. 2012), on the light side: calls
+  /// visit(candidate) for each vertex of light subpath `y` (after the light's own point) at which
+  /// light may be merged, with what a merge needs of the subpath (MergeCandidate), for merges of
+  /// density factor `merge_density` (Georgiev et al.'s eta). Sets the subpath's strategy tails.
+  template <typename Visit>
+  void merge_candidates(std::span<Vertex> y, float merge_density, Visit&& visit) const {
     const StrategyRules rules{light_tracing_counts_, merge_density};
-    const JoinDensities join{area_density_from(pt, to_camera_side, from),
-                             k >= 2 ? light_path[k - 2].pdf_reverse : 0.0f, photon.pdf_forward,
-                             area_density_from(pt, arrival, z[t - 2])};
-    const float weight = detail::merge_weight_from_tails(light, z, join, rules);
-    return pt.beta * value * photon.beta * (weight / merge_density);
+    detail::strategy_tails(y, true, rules);
+    for (std::size_t k = 1; k < y.size(); ++k) {
+      const Vertex& photon = y[k];
+      if (photon.kind != Kind::surface || !photon.joinable()) continue;
+      const Vertex& from = y[k - 1];
+      const Vec3 offset = from.point - photon.point;
+      const float distance2 = glm::dot(offset, offset);
+      if (!(distance2 > 0.0f)) continue;
+      const Vec3 arrival = offset / std::sqrt(distance2);
+      // The density per unit area at `from` of a direction from the merging point, per unit
+      // solid angle, taken at the light vertex (within the radius of the merging point).
+      float geometry = 1.0f / distance2;
+      if (from.kind == Kind::surface || from.kind == Kind::sphere_light)
+        geometry *= std::fabs(glm::dot(from.normal, arrival));
+      const float light_factor = detail::merge_light_factor<Vertex>(y.first(k), rules);
+      visit(MergeCandidate{photon.point, photon.sphere, photon.beta, arrival, photon.pdf_forward,
+                           geometry * geometry * light_factor, std::uint16_t(k),
+                           glm::dot(photon.facing, photon.normal) > 0.0f, from.delta});
+    }
   }
 
-  /// Sets the strategy tails of subpath `v` (a light subpath, or a camera one) for merges of
-  /// density factor `merge_density` (merge()).
-  void prepare_merges(std::span<Vertex> v, bool light_side, float merge_density) const {
-    detail::strategy_tails(v, light_side, StrategyRules{light_tracing_counts_, merge_density});
+  /// Sets the strategy tails of camera subpath `z` for merges of density factor
+  /// `merge_density`, before merge_target.
+  void prepare_camera_merges(std::span<Vertex> z, float merge_density) const {
+    detail::strategy_tails(z, false, StrategyRules{light_tracing_counts_, merge_density});
+  }
+
+  /// Vertex merging on the camera side: what merging at camera vertex z[t - 1] (t >= 2) needs of
+  /// the camera subpath z (its strategy tails set by prepare_camera_merges), the same for every
+  /// candidate; none where the vertex cannot merge (it is not on a surface, or its Bsdf has no
+  /// density).
+  std::optional<MergeTarget<Vertex>> merge_target(std::span<const Vertex> z,
+                                                  float merge_density) const {
+    const std::size_t t = z.size();
+    const Vertex& pt = z[t - 1];
+    if (pt.kind != Kind::surface || !pt.joinable()) return std::nullopt;
+    const StrategyRules rules{light_tracing_counts_, merge_density};
+    const Vertex& before = z[t - 2];
+    const Vec3 offset = before.point - pt.point;
+    const float distance2 = glm::dot(offset, offset);
+    if (!(distance2 > 0.0f)) return std::nullopt;
+    const Vec3 toward_camera = offset / std::sqrt(distance2);
+    float geometry = 1.0f / distance2;
+    if (before.kind == Kind::surface || before.kind == Kind::sphere_light)
+      geometry *= std::fabs(glm::dot(before.normal, toward_camera));
+    return MergeTarget<Vertex>{&pt,          toward_camera,
+                               geometry,     detail::merge_camera_factors<Vertex>(z, rules),
+                               int(t),       glm::dot(pt.facing, pt.normal) > 0.0f,
+                               merge_density};
+  }
+
+  /// The light that light vertex `candidate` carries to the camera vertex of `target` when it
+  /// lies within the merging radius of it, for the pixel: its weight, over the light paths that
+  /// could have brought it, with the uniform kernel over the radius's disc, 1 / merge_density in
+  /// all. Zero where the path would be too long, where the light vertex lies on another sphere
+  /// or on the other side of it, or where the camera vertex's Bsdf does not take the light.
+  Color merge(const MergeTarget<Vertex>& target, const MergeCandidate& candidate) const {
+    const Vertex& pt = *target.vertex;
+    if (int(candidate.vertex) + target.camera_vertices - 2 > most_vertices_ ||
+        candidate.sphere != pt.sphere || candidate.outward != target.outward)
+      return Color(0.0f);
+    const Color value = pt.scattering.f(pt.facing, target.toward_camera, candidate.arrival);
+    if (value == Color(0.0f)) return Color(0.0f);
+    // The camera vertex's densities for the light's direction and for the camera side's.
+    const float light_pdf = pt.scattering.pdf(pt.facing, target.toward_camera, candidate.arrival);
+    if (!(light_pdf > 0.0f)) return Color(0.0f);
+    const JoinDensities join{light_pdf, 0.0f, candidate.pdf_forward,
+                             pt.scattering.pdf(pt.facing, candidate.arrival, target.toward_camera) *
+                                 target.camera_geometry};
+    const float weight = detail::merge_weight_from_factors(
+        join, target.factors, candidate.light_factor, candidate.after_delta,
+        StrategyRules{light_tracing_counts_, target.merge_density});
+    return pt.beta * value * candidate.beta * (weight / target.merge_density);
   }
 
   /// The camera subpath into `z`, z[0] the camera; the background its rays escape to goes
