@@ -1,5 +1,5 @@
 // Vertex connection and merging (render/bidirectional_execution.hpp with merging,
-// render/light_path_store.hpp): the same bits whatever the threads, tiles and passes, and after a
+// render/merge_grid.hpp): the same bits whatever the threads, tiles and passes, and after a
 // resume; a point light's caustic under a glass ball seen through pixel centres, which only
 // merging can render there (no join reaches the light through the glass, and no join to the
 // camera lands on a pixel centre), against the fan of rays of tests/render/caustic_reference.hpp,

@@ -13,9 +13,10 @@
 //
 // With merging (vertex connection and merging, Georgiev et al. 2012), the light subpaths of a
 // sample index are traced first, for every pixel at once (a light phase, before the camera
-// subpaths of that index), and kept in a LightPathStore (render/light_path_store.hpp): each
-// camera vertex then merges with the light of every light vertex within the merging radius,
-// besides every join with its own pixel's light subpath, all under one power heuristic. The
+// subpaths of that index), their vertices kept as merge candidates in a MergeGrid
+// (render/merge_grid.hpp): each camera vertex then merges with the light of every light vertex
+// within the merging radius, besides every join with its own pixel's light subpath (traced
+// again, from the same sample values, rather than kept), all under one power heuristic. The
 // radius shrinks with the sample index i as r_1 / i^(1/8) (the progressive radius of
 // Knaus and Zwicker 2011 with alpha = 3/4), so the merging's bias vanishes as samples grow; r_1 is
 // kMergeRadiusPixels pixels wide at the median distance of what the camera sees. Each light path
@@ -37,8 +38,8 @@
 #include "glint/render/camera.hpp"
 #include "glint/render/estimators/bidirectional.hpp"
 #include "glint/render/film_splatter.hpp"
-#include "glint/render/light_path_store.hpp"
 #include "glint/render/light_tracing_execution.hpp"
+#include "glint/render/merge_grid.hpp"
 #include "glint/render/render_settings.hpp"
 #include "glint/render/tile_grid.hpp"
 #include "glint/scene/scene.hpp"
@@ -70,7 +71,7 @@ class BidirectionalExecution {
         tracer_(scene, camera_, settings.max_depth, float(settings.width) * float(settings.height),
                 splatter_.has_area()),
         settings_(settings),
-        light_paths_(Merging ? std::size_t(settings.width) * std::size_t(settings.height) : 0),
+        merge_grid_(Merging ? std::size_t(settings.width) * std::size_t(settings.height) : 0),
         first_merge_radius_(
             Merging ? first_merge_radius(scene, camera_, settings, merge_radius_pixels) : 0.0f) {}
   BidirectionalExecution(const BidirectionalExecution&) = delete;
@@ -90,27 +91,24 @@ class BidirectionalExecution {
   void prepare_sample(int sample, int threads, TraceCounters& counters) requires Merging {
     const float radius =
         first_merge_radius_ / std::sqrt(std::sqrt(std::sqrt(float(sample) + 1.0f)));
-    merge_density_ = kPi * radius * radius * float(light_paths_.path_count());
+    merge_density_ = kPi * radius * radius * float(merge_grid_.path_count());
     std::atomic<std::size_t> next_chunk{0};
     std::vector<TraceCounters> thread_counters(std::size_t(std::max(threads, 1)));
     const auto work = [&](TraceCounters& mine) {
       typename C::sampler sampler;
-      std::vector<Vertex> scratch(std::size_t(tracer_.subpath_capacity())), staging;
+      std::vector<Vertex> vertices(std::size_t(tracer_.subpath_capacity()));
       for (std::size_t chunk = next_chunk.fetch_add(1, std::memory_order_relaxed);
-           chunk < light_paths_.chunk_count();
+           chunk < merge_grid_.chunk_count();
            chunk = next_chunk.fetch_add(1, std::memory_order_relaxed))
-        light_paths_.fill_chunk(
-            chunk, scratch, staging,
-            [&](std::size_t path, std::span<Vertex> v, std::vector<MergeCandidate>& candidates) {
+        merge_grid_.fill_chunk(
+            chunk, [&](std::size_t path, std::vector<MergeCandidate>& candidates) {
               const std::size_t width = std::size_t(settings_.width);
-              sampler.start(PixelSample{std::uint32_t(path % width), std::uint32_t(path / width),
-                                        std::uint32_t(sample),
-                                        std::uint32_t(settings_.samples_per_pixel),
-                                        settings_.seed ^ LightTracingExecution<C>::kLightStream});
-              const std::size_t n = tracer_.light_subpath(sampler, v, mine);
-              tracer_.merge_candidates(v.first(n), merge_density_,
+              sampler.start(light_key(PixelSample{
+                  std::uint32_t(path % width), std::uint32_t(path / width), std::uint32_t(sample),
+                  std::uint32_t(settings_.samples_per_pixel), settings_.seed}));
+              const std::size_t n = tracer_.light_subpath(sampler, vertices, mine);
+              tracer_.merge_candidates(std::span<Vertex>(vertices).first(n), merge_density_,
                                        [&](const MergeCandidate& c) { candidates.push_back(c); });
-              return n;
             });
     };
     {
@@ -128,7 +126,7 @@ class BidirectionalExecution {
       counters.rays += c.rays;
       counters.invalid_samples += c.invalid_samples;
     }
-    light_paths_.build_grid(radius);
+    merge_grid_.build_grid(radius);
   }
 
   void render_tile(ThreadState& state, const Tile& tile, int first, int last, PixelSums& sums,
@@ -149,12 +147,8 @@ class BidirectionalExecution {
           const PixelSample key{std::uint32_t(x), std::uint32_t(y), std::uint32_t(s),
                                 std::uint32_t(settings_.samples_per_pixel), settings_.seed};
           camera_sampler.start(key);
-          if constexpr (!Merging) {
-            // With merging, the light phase has traced this pixel's light subpath.
-            PixelSample light_key = key;
-            light_key.seed ^= LightTracingExecution<C>::kLightStream;
-            light_sampler.start(light_key);
-          }
+          // With merging, the light phase traced this light subpath from the same values.
+          light_sampler.start(light_key(key));
           Vec2 film(float(x) + 0.5f, float(y) + 0.5f);
           float filter_density = 0.0f;
           if constexpr (C::antialiasing::enabled) {
@@ -166,8 +160,7 @@ class BidirectionalExecution {
           Color sample;
           if constexpr (Merging) {
             sample = merged_sample(camera_.ray_through(film), filter_density, camera_sampler,
-                                   std::size_t(y) * std::size_t(settings_.width) + std::size_t(x),
-                                   state, splat, counters);
+                                   light_sampler, state, splat, counters);
           } else {
             sample = tracer_.sample(camera_.ray_through(film), filter_density, camera_sampler,
                                     light_sampler, std::span<Vertex>(state.camera),
@@ -185,24 +178,33 @@ class BidirectionalExecution {
   }
 
  private:
-  /// A camera subpath through the pixel whose light subpath is `path` of the light phase: every
-  /// join with that light subpath, and every merge of its vertices with the light phase's.
+  /// The stream a sample's light subpath draws from.
+  static PixelSample light_key(PixelSample key) {
+    key.seed ^= LightTracingExecution<C>::kLightStream;
+    return key;
+  }
+
+  /// A camera subpath through the pixel and its light subpath, the one the light phase traced
+  /// from `light_sampler`'s values (traced again): every join of the two, and every merge of the
+  /// camera vertices with the light phase's candidates.
   template <typename Splat>
   Color merged_sample(const Ray& ray, float filter_density, typename C::sampler& camera_sampler,
-                      std::size_t path, ThreadState& state, Splat& splat,
+                      typename C::sampler& light_sampler, ThreadState& state, Splat& splat,
                       TraceCounters& counters) const {
     Color radiance(0.0f);
     const std::size_t t = tracer_.camera_subpath(
         ray, filter_density, camera_sampler, std::span<Vertex>(state.camera), radiance, counters);
+    const std::size_t s =
+        tracer_.light_subpath(light_sampler, std::span<Vertex>(state.light), counters);
     tracer_.prepare_camera_merges(std::span<Vertex>(state.camera.data(), t), merge_density_);
     const std::span<const Vertex> z(state.camera.data(), t);
-    radiance += tracer_.connect(z, light_paths_.path(path), camera_sampler, splat, merge_density_,
-                                counters);
+    radiance += tracer_.connect(z, std::span<const Vertex>(state.light.data(), s), camera_sampler,
+                                splat, merge_density_, counters);
     for (std::size_t end = 2; end <= t; ++end) {
       const std::optional<MergeTarget<Vertex>> target =
           tracer_.merge_target(z.first(end), merge_density_);
       if (!target) continue;
-      light_paths_.for_each_near(target->vertex->point, [&](const MergeCandidate& candidate) {
+      merge_grid_.for_each_near(target->vertex->point, [&](const MergeCandidate& candidate) {
         radiance += tracer_.merge(*target, candidate);
       });
     }
@@ -233,9 +235,9 @@ class BidirectionalExecution {
   FilmSplatter<C> splatter_;
   BidirectionalPathTracer<C> tracer_;  // holds a reference to camera_, declared before it
   RenderSettings settings_;
-  LightPathStore<Vertex, MergeCandidate> light_paths_;  ///< the light phase's paths (merging only)
-  float first_merge_radius_;                            ///< the merging radius of sample index 0
-  float merge_density_ = 0.0f;                          ///< eta of the sample index being rendered
+  MergeGrid<MergeCandidate> merge_grid_;  ///< the light phase's merge candidates (merging only)
+  float first_merge_radius_;              ///< the merging radius of sample index 0
+  float merge_density_ = 0.0f;            ///< eta of the sample index being rendered
 };
 
 /// Vertex connection and merging: the bidirectional execution with a light phase per sample

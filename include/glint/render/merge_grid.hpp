@@ -1,80 +1,54 @@
 #pragma once
-// The light subpaths of one iteration of vertex connection and merging
-// (render/bidirectional_execution.hpp): one path per pixel, kept by path index, and a hash grid of
-// the vertices at which their light may be merged with a camera path's, each as a candidate that
-// holds what a merge needs, so that a query reads the grid alone.
+// The merge candidates of one iteration of vertex connection and merging
+// (render/bidirectional_execution.hpp): the vertices of every pixel's light subpath at which its
+// light may be merged with a camera path's, each as a candidate that holds what a merge needs
+// (MergeCandidate), in a hash grid, so that a query reads the grid alone. The subpaths themselves
+// are not kept: a camera subpath joined to its own pixel's light subpath traces it again from
+// the same sample values.
 //
-// The store is filled in chunks of consecutive paths, each chunk by one thread into storage of
-// its own, so what a chunk holds depends on its paths' indices only. The grid is a counting sort of
-// the vertices by cell, in path and vertex order, and a query visits its cells in a fixed order:
-// the candidates a camera vertex meets, and the order in which their light is added, depend on
-// the scene, the settings and the seed, never on the threads.
+// The grid is filled in chunks of consecutive paths, each chunk by one thread into storage of
+// its own, so what a chunk holds depends on its paths' indices only. The grid is a counting sort
+// of the candidates by cell, in path and vertex order, and a query visits its cells in a fixed
+// order: the candidates a camera vertex meets, and the order in which their light is added,
+// depend on the scene, the settings and the seed, never on the threads.
 
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <span>
 #include <vector>
 
 #include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
-#include "glint/render/estimators/bidirectional.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
-/// The light subpaths, of vertices of type Vertex (PathVertexOf<C>), and their merge candidates
-/// of type Candidate (MergeCandidate: with a `point`).
-template <typename Vertex, typename Candidate>
-class LightPathStore {
+/// The merge candidates, of type Candidate (MergeCandidate: with a `point`), of one light subpath
+/// per path index.
+template <typename Candidate>
+class MergeGrid {
  public:
   /// Paths per chunk: enough to keep a thread busy between its claims, few enough to share a
   /// pass of a small image among threads.
   static constexpr std::size_t kChunkPaths = 512;
 
-  explicit LightPathStore(std::size_t paths)
+  explicit MergeGrid(std::size_t paths)
       : paths_(paths), chunks_((paths + kChunkPaths - 1) / kChunkPaths) {}
 
   std::size_t path_count() const { return paths_; }
   std::size_t chunk_count() const { return chunks_.size(); }
 
-  /// Refills chunk `chunk` with its paths: trace(path index, scratch, candidates) writes a
-  /// path's vertices to the front of `scratch`, appends its merge candidates to `candidates` and
-  /// returns how many vertices it wrote. The paths gather in `staging` (the calling thread's,
-  /// reused from chunk to chunk) and are then copied into the chunk, whose storage so holds what
-  /// its largest filling needed rather than a doubled guess.
+  /// Refills chunk `chunk` with its paths' candidates: trace(path index, candidates) appends
+  /// them to `candidates` in vertex order.
   template <typename Trace>
-  void fill_chunk(std::size_t chunk, std::span<Vertex> scratch, std::vector<Vertex>& staging,
-                  Trace&& trace) {
-    Chunk& c = chunks_[chunk];
-    staging.clear();
-    c.starts.clear();
-    c.candidates.clear();
+  void fill_chunk(std::size_t chunk, Trace&& trace) {
+    std::vector<Candidate>& candidates = chunks_[chunk];
+    candidates.clear();
     const std::size_t first = chunk * kChunkPaths;
     const std::size_t last = std::min(first + kChunkPaths, paths_);
-    for (std::size_t path = first; path < last; ++path) {
-      c.starts.push_back(std::uint32_t(staging.size()));
-      const std::size_t count = trace(path, scratch, c.candidates);
-      staging.insert(staging.end(), scratch.begin(), scratch.begin() + std::ptrdiff_t(count));
-    }
-    c.starts.push_back(std::uint32_t(staging.size()));
-    c.vertices.assign(staging.begin(), staging.end());
-  }
-
-  /// Path `index`'s vertices, its light's point first.
-  std::span<const Vertex> path(std::size_t index) const {
-    const Chunk& c = chunks_[index / kChunkPaths];
-    const std::size_t i = index % kChunkPaths;
-    return std::span<const Vertex>(c.vertices).subspan(c.starts[i], c.starts[i + 1] - c.starts[i]);
-  }
-
-  /// The vertices held in all chunks, for what a pass of light paths costs in memory.
-  std::size_t vertex_count() const {
-    std::size_t count = 0;
-    for (const Chunk& c : chunks_)
-      count += c.vertices.size();
-    return count;
+    for (std::size_t path = first; path < last; ++path)
+      trace(path, candidates);
   }
 
   /// The merge candidates in the grid, for what a pass of light paths costs in memory.
@@ -87,24 +61,24 @@ class LightPathStore {
     radius_ = radius;
     inverse_cell_ = 1.0 / (2.0 * double(radius));
     std::size_t count = 0;
-    for (const Chunk& c : chunks_)
-      count += c.candidates.size();
+    for (const std::vector<Candidate>& c : chunks_)
+      count += c.size();
     const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(1, 2 * count));
     mask_ = buckets - 1;
     // Bucket b's count at b + 2; after the running sum, bucket_starts_[b + 1] is where bucket b
     // begins, the cursor its entries advance, which leaves it where bucket b ends: bucket b is
     // then [bucket_starts_[b], bucket_starts_[b + 1]).
     bucket_starts_.assign(buckets + 2, 0);
-    for (const Chunk& c : chunks_)
-      for (const Candidate& candidate : c.candidates)
+    for (const std::vector<Candidate>& c : chunks_)
+      for (const Candidate& candidate : c)
         ++bucket_starts_[bucket(cell(candidate.point, 0.0)) + 2];
     for (std::size_t b = 2; b < bucket_starts_.size(); ++b)
       bucket_starts_[b] += bucket_starts_[b - 1];
     sorted_.resize(count);
-    for (Chunk& c : chunks_) {
-      for (const Candidate& candidate : c.candidates)
+    for (std::vector<Candidate>& c : chunks_) {
+      for (const Candidate& candidate : c)
         sorted_[bucket_starts_[bucket(cell(candidate.point, 0.0)) + 1]++] = candidate;
-      std::vector<Candidate>().swap(c.candidates);
+      std::vector<Candidate>().swap(c);
     }
   }
 
@@ -134,12 +108,6 @@ class LightPathStore {
   }
 
  private:
-  struct Chunk {
-    std::vector<Vertex> vertices;
-    std::vector<std::uint32_t> starts;  ///< each path's first vertex, and the end
-    std::vector<Candidate> candidates;  ///< until build_grid, in path and vertex order
-  };
-
   /// The cell holding `point` shifted by `shift` cells along each axis.
   std::array<std::int64_t, 3> cell(const Vec3& point, double shift) const {
     return {std::int64_t(std::floor(double(point.x) * inverse_cell_ + shift)),
@@ -155,7 +123,7 @@ class LightPathStore {
   }
 
   std::size_t paths_;
-  std::vector<Chunk> chunks_;
+  std::vector<std::vector<Candidate>> chunks_;  ///< until build_grid, in path and vertex order
   float radius_ = 0.0f;
   double inverse_cell_ = 0.0;
   std::size_t mask_ = 0;
