@@ -21,3 +21,15 @@ add_test(NAME "compile-fail: the wavefront renderer refuses the tree model"
           -P ${CMAKE_CURRENT_LIST_DIR}/expect_build_failure.cmake)
 set_tests_properties("compile-fail: the wavefront renderer refuses the tree model"
   PROPERTIES LABELS compile)
+
+# A material model's Bsdf is checked where an estimator uses it: one lacking a member fails with
+# the static assertion that names the Bsdf concept.
+add_executable(glint-compile-fail-incomplete-bsdf EXCLUDE_FROM_ALL
+  ${CMAKE_CURRENT_LIST_DIR}/incomplete_bsdf.cpp)
+target_link_libraries(glint-compile-fail-incomplete-bsdf PRIVATE glint::glint)
+add_test(NAME "compile-fail: a material model's incomplete Bsdf names the concept"
+  COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR}
+          -DTARGET=glint-compile-fail-incomplete-bsdf "-DMESSAGE=Bsdf<"
+          -P ${CMAKE_CURRENT_LIST_DIR}/expect_build_failure.cmake)
+set_tests_properties("compile-fail: a material model's incomplete Bsdf names the concept"
+  PROPERTIES LABELS compile)
