@@ -456,15 +456,11 @@ class BidirectionalPathTracer {
       const Vertex& photon = y[k];
       if (photon.kind != Kind::surface || !photon.joinable()) continue;
       const Vertex& from = y[k - 1];
-      const Vec3 offset = from.point - photon.point;
-      const float distance2 = glm::dot(offset, offset);
-      if (!(distance2 > 0.0f)) continue;
-      const Vec3 arrival = offset / std::sqrt(distance2);
-      // The density per unit area at `from` of a direction from the merging point, per unit
-      // solid angle, taken at the light vertex (within the radius of the merging point).
-      float geometry = 1.0f / distance2;
-      if (from.kind == Kind::surface || from.kind == Kind::sphere_light)
-        geometry *= std::fabs(glm::dot(from.normal, arrival));
+      // Per unit solid angle at the merging point to per unit area at `from`, taken at the light
+      // vertex (within the radius of the merging point).
+      const float geometry = detail::area_density(1.0f, photon, from);
+      if (!(geometry > 0.0f)) continue;
+      const Vec3 arrival = towards(photon, from);
       const float light_factor = detail::merge_light_factor<Vertex>(y.first(k), rules);
       visit(MergeCandidate{photon.point, photon.sphere, photon.beta, arrival, photon.pdf_forward,
                            geometry * geometry * light_factor, std::uint16_t(k),
@@ -489,13 +485,9 @@ class BidirectionalPathTracer {
     if (pt.kind != Kind::surface || !pt.joinable()) return std::nullopt;
     const StrategyRules rules{light_tracing_counts_, merge_density};
     const Vertex& before = z[t - 2];
-    const Vec3 offset = before.point - pt.point;
-    const float distance2 = glm::dot(offset, offset);
-    if (!(distance2 > 0.0f)) return std::nullopt;
-    const Vec3 toward_camera = offset / std::sqrt(distance2);
-    float geometry = 1.0f / distance2;
-    if (before.kind == Kind::surface || before.kind == Kind::sphere_light)
-      geometry *= std::fabs(glm::dot(before.normal, toward_camera));
+    const float geometry = detail::area_density(1.0f, pt, before);
+    if (!(geometry > 0.0f)) return std::nullopt;
+    const Vec3 toward_camera = towards(pt, before);
     return MergeTarget<Vertex>{&pt,          toward_camera,
                                geometry,     detail::merge_camera_factors<Vertex>(z, rules),
                                int(t),       glm::dot(pt.facing, pt.normal) > 0.0f,
