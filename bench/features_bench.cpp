@@ -31,6 +31,7 @@
 #include "glint/policy/light_sampling.hpp"
 #include "glint/policy/sampler.hpp"
 #include "glint/policy/sphere_shading.hpp"
+#include "glint/render/lights/sphere_light.hpp"
 #include "glint/scene/emitters.hpp"
 #include "glint/scene/inclusion_tree.hpp"
 #include "glint/scene/scene.hpp"
@@ -258,7 +259,7 @@ BENCHMARK_TEMPLATE(BM_HemisphereWarp, glint::CosineHemisphere);
 /// Shading points around a lamp of radius 2 at the origin: outside it at distances 3 to 60 (the
 /// cone sampling) or, for the inside benchmark, within it (area sampling).
 struct EmitterInputs {
-  glint::SphereEmitter lamp{Vec3(0.0f), 2.0f, glint::Color(5.0f), 0};
+  glint::SphereLight lamp{glint::SphereEmitter{Vec3(0.0f), 2.0f, glint::Color(5.0f), 0}};
   std::vector<Vec3> outside, inside;
   std::vector<Vec2> u = random_unit_squares();
   EmitterInputs() : outside(kInputs), inside(kInputs) {
@@ -274,11 +275,10 @@ void BM_EmitterDirection(benchmark::State& state) {
   const EmitterInputs in;
   const bool from_inside = state.range(0) != 0;
   const std::vector<Vec3>& points = from_inside ? in.inside : in.outside;
-  const glint::EmitterView view =
-      from_inside ? glint::EmitterView::inside : glint::EmitterView::outside;
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(in.lamp.sample_direction(points[i & kMask], view, in.u[i & kMask]));
+    benchmark::DoNotOptimize(
+        in.lamp.sample_li(points[i & kMask], !from_inside, false, in.u[i & kMask]));
     ++i;
   }
   state.SetItemsProcessed(state.iterations());

@@ -100,8 +100,7 @@ void subpaths(const DensityPath& p, std::size_t s, std::vector<PathVertex>& ligh
   camera.clear();
   const auto vertex = [&](std::size_t i, bool light_side) {
     PathVertex v;
-    v.kind = i == 0
-                 ? (p.point_light ? PathVertex::Kind::point_light : PathVertex::Kind::sphere_light)
+    v.kind = i == 0 ? (p.point_light ? PathVertex::Kind::delta_light : PathVertex::Kind::area_light)
              : i == k ? PathVertex::Kind::camera
                       : PathVertex::Kind::surface;
     v.delta = p.delta[i];

@@ -23,11 +23,13 @@
 #include "glint/math/sampling.hpp"
 #include "glint/policy/light_sampling.hpp"
 #include "glint/policy/path_termination.hpp"
+#include "glint/render/lights/sphere_light.hpp"
 #include "glint/scene/emitters.hpp"
 #include "statistics.hpp"
 
 using glint::Color;
-using glint::EmitterView;
+using glint::SphereLight;
+using EmitterView = glint::SphereLightView;
 using glint::SphereEmitter;
 using glint::Vec2;
 using glint::Vec3;
@@ -141,8 +143,18 @@ double miss_distance(const DVec& origin, const DVec& direction, const DVec& cent
 constexpr std::uint32_t kEmitterSphere = 7;
 constexpr std::uint32_t kOtherSphere = 3;
 
-SphereEmitter make_emitter(Vec3 center, float radius) {
-  return SphereEmitter{center, radius, Color(1.0f), kEmitterSphere};
+/// A direction towards `light` from `point`, which sees it as `view` says; none where nothing
+/// can arrive.
+std::optional<glint::LightSample> sample_towards(const SphereLight& light, const Vec3& point,
+                                                 EmitterView view, Vec2 u) {
+  const glint::LightSample sample =
+      light.sample_li(point, view == EmitterView::outside, view == EmitterView::none, u);
+  if (!sample.valid) return std::nullopt;
+  return sample;
+}
+
+SphereLight make_emitter(Vec3 center, float radius) {
+  return SphereLight(SphereEmitter{center, radius, Color(1.0f), kEmitterSphere});
 }
 
 }  // namespace
@@ -216,17 +228,17 @@ TEST_CASE(
   CHECK(largest_angle > 0.99 * theta_max);
   CHECK(smallest_angle < 0.1 * theta_max);
 
-  // The same through SphereEmitter: every direction still meets the sphere. Float directions
+  // The same through SphereLight: every direction still meets the sphere. Float directions
   // are good to ~1e-7 radians after the change of frame; at 1e4 that is 1e-3 sideways.
   const Vec3 center(3.0f, -2.0f, 1.0f);
-  const SphereEmitter emitter = make_emitter(center, float(r));
+  const SphereLight emitter = make_emitter(center, float(r));
   const DVec axis = DVec{1, 2, -2}.unit();
   const DVec point = to_double(center) - axis * d;
   const Vec3 p = to_float(point);
-  REQUIRE(emitter.view_from(p, kOtherSphere, false) == EmitterView::outside);
+  REQUIRE(emitter.view_from({p, kOtherSphere, false}) == EmitterView::outside);
   int misses = 0;
   for (int i = 0; i < 4096; ++i) {
-    const auto sample = emitter.sample_direction(p, EmitterView::outside, next_2d(rng));
+    const auto sample = sample_towards(emitter, p, EmitterView::outside, next_2d(rng));
     REQUIRE(sample.has_value());
     REQUIRE(std::isfinite(sample->pdf));
     if (miss_distance(to_double(p), to_double(sample->direction), to_double(center)) > r + 2e-7 * d)
@@ -236,31 +248,31 @@ TEST_CASE(
   CHECK(misses == 0);
 }
 
-// ---- SphereEmitter -------------------------------------------------------------------------
+// ---- SphereLight ---------------------------------------------------------------------------
 
-TEST_CASE("emitter sampling: SphereEmitter::view_from", "[emitters]") {
-  const SphereEmitter emitter = make_emitter(Vec3(1.0f, 2.0f, 3.0f), 2.0f);
+TEST_CASE("emitter sampling: SphereLight::view_from", "[emitters]") {
+  const SphereLight emitter = make_emitter(Vec3(1.0f, 2.0f, 3.0f), 2.0f);
   const Vec3 on_surface(1.0f, 2.0f, 5.0f);
   // A point on the emitter's own surface sees it only from inside.
-  CHECK(emitter.view_from(on_surface, kEmitterSphere, false) == EmitterView::none);
-  CHECK(emitter.view_from(on_surface, kEmitterSphere, true) == EmitterView::inside);
+  CHECK(emitter.view_from({on_surface, kEmitterSphere, false}) == EmitterView::none);
+  CHECK(emitter.view_from({on_surface, kEmitterSphere, true}) == EmitterView::inside);
   // A point of another sphere: by where it is.
-  CHECK(emitter.view_from(Vec3(1.0f, 2.0f, 8.0f), kOtherSphere, false) == EmitterView::outside);
-  CHECK(emitter.view_from(Vec3(1.0f, 2.0f, 8.0f), kOtherSphere, true) == EmitterView::outside);
-  CHECK(emitter.view_from(Vec3(1.5f, 2.0f, 3.0f), kOtherSphere, false) == EmitterView::inside);
-  CHECK(emitter.view_from(Vec3(1.5f, 2.0f, 3.0f), kOtherSphere, true) == EmitterView::inside);
+  CHECK(emitter.view_from({Vec3(1.0f, 2.0f, 8.0f), kOtherSphere, false}) == EmitterView::outside);
+  CHECK(emitter.view_from({Vec3(1.0f, 2.0f, 8.0f), kOtherSphere, true}) == EmitterView::outside);
+  CHECK(emitter.view_from({Vec3(1.5f, 2.0f, 3.0f), kOtherSphere, false}) == EmitterView::inside);
+  CHECK(emitter.view_from({Vec3(1.5f, 2.0f, 3.0f), kOtherSphere, true}) == EmitterView::inside);
   // Nothing to sample, no density, from a point that cannot see the emitter.
-  CHECK_FALSE(emitter.sample_direction(on_surface, EmitterView::none, Vec2(0.3f, 0.6f)));
-  CHECK(emitter.direction_pdf(on_surface, EmitterView::none, Vec3(0.0f, 0.0f, -1.0f), 4.0f,
-                              Vec3(0.0f, 0.0f, -1.0f)) == 0.0f);
+  CHECK_FALSE(sample_towards(emitter, on_surface, EmitterView::none, Vec2(0.3f, 0.6f)));
+  CHECK(emitter.pdf_li(on_surface, EmitterView::none, Vec3(0.0f, 0.0f, -1.0f), 4.0f,
+                       Vec3(0.0f, 0.0f, -1.0f)) == 0.0f);
 }
 
 TEST_CASE(
-    "emitter sampling: SphereEmitter from outside: every direction hits, uniformly over the cone",
+    "emitter sampling: SphereLight from outside: every direction hits, uniformly over the cone",
     "[emitters][statistical]") {
   const DVec center{1.0, 2.0, 3.0};
   const double r = 2.0;
-  const SphereEmitter emitter = make_emitter(to_float(center), float(r));
+  const SphereLight emitter = make_emitter(to_float(center), float(r));
   // Close (the cap is a large part of the sphere) and farther away.
   for (const double distance : {2.5, 5.0, 40.0}) {
     INFO("distance " << distance);
@@ -269,7 +281,7 @@ TEST_CASE(
     const Vec3 p = to_float(point);
     const double solid_angle = sphere_solid_angle(r, distance);
     const double m = one_minus_cos_max(r, distance);
-    REQUIRE(emitter.view_from(p, kOtherSphere, false) == EmitterView::outside);
+    REQUIRE(emitter.view_from({p, kOtherSphere, false}) == EmitterView::outside);
 
     glint::Pcg32 rng(2024u, 11u);
     const int n = 1 << 16;
@@ -277,7 +289,7 @@ TEST_CASE(
     samples.reserve(n);
     int misses = 0, pdf_mismatches = 0;
     for (int i = 0; i < n; ++i) {
-      const auto sample = emitter.sample_direction(p, EmitterView::outside, next_2d(rng));
+      const auto sample = sample_towards(emitter, p, EmitterView::outside, next_2d(rng));
       REQUIRE(sample.has_value());
       const DVec direction = to_double(sample->direction);
       const Roots roots = intersect(point, direction, center, r);
@@ -289,7 +301,7 @@ TEST_CASE(
       const DVec at = point + direction.unit() * t;
       const Vec3 normal = to_float((at - center).unit());
       const float pdf =
-          emitter.direction_pdf(p, EmitterView::outside, sample->direction, float(t), normal);
+          emitter.pdf_li(p, EmitterView::outside, sample->direction, float(t), normal);
       if (!(std::fabs(pdf - sample->pdf) <= 1e-6f * sample->pdf)) ++pdf_mismatches;
       samples.push_back(cone_coordinates(direction, center - point));
     }
@@ -301,7 +313,7 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "emitter sampling: SphereEmitter from inside: the density integrates to one over all "
+    "emitter sampling: SphereLight from inside: the density integrates to one over all "
     "directions",
     "[emitters][statistical]") {
   // Seen from inside, directions are drawn through uniform points of the sphere's area; the
@@ -312,7 +324,7 @@ TEST_CASE(
   //  - E over its own samples of g / pdf = integral of g over the directions covered.
   const DVec center{-1.0, 0.5, 2.0};
   const double r = 3.0;
-  const SphereEmitter emitter = make_emitter(to_float(center), float(r));
+  const SphereLight emitter = make_emitter(to_float(center), float(r));
 
   const auto integrate_pdf = [&](const DVec& point, EmitterView view) {
     glint::Pcg32 rng(77u, 5u);
@@ -327,8 +339,8 @@ TEST_CASE(
       // sphere meet nothing of it (their far root is ~0).
       if (roots.hit && roots.far > 1e-9 * r) {
         const DVec at = point + direction * roots.far;
-        const float pdf = emitter.direction_pdf(to_float(point), view, to_float(direction),
-                                                float(roots.far), to_float((at - center).unit()));
+        const float pdf = emitter.pdf_li(to_float(point), view, to_float(direction),
+                                         float(roots.far), to_float((at - center).unit()));
         value = kFourPi * pdf;
       }
       values.push_back(value);
@@ -339,7 +351,7 @@ TEST_CASE(
   SECTION("from a point inside the sphere") {
     const DVec point = center + DVec{0.6, -0.8, 1.2} * (0.6 * r / 1.56);
     const Vec3 p = to_float(point);
-    REQUIRE(emitter.view_from(p, kOtherSphere, false) == EmitterView::inside);
+    REQUIRE(emitter.view_from({p, kOtherSphere, false}) == EmitterView::inside);
 
     const glint::test::Moments integral = integrate_pdf(point, EmitterView::inside);
     CHECK(std::abs(integral.mean - 1.0) <= 5.0 * std::sqrt(integral.variance / (1 << 16)));
@@ -349,15 +361,15 @@ TEST_CASE(
     std::vector<double> all, upper, cos2;
     int mismatches = 0;
     for (int i = 0; i < n; ++i) {
-      const auto sample = emitter.sample_direction(p, EmitterView::inside, next_2d(rng));
+      const auto sample = sample_towards(emitter, p, EmitterView::inside, next_2d(rng));
       REQUIRE(sample.has_value());
       REQUIRE(sample->pdf > 0.0f);
       const DVec direction = to_double(sample->direction);
       const Roots roots = intersect(point, direction, center, r);
       REQUIRE(roots.hit);
       const DVec at = point + direction.unit() * roots.far;
-      const float pdf = emitter.direction_pdf(p, EmitterView::inside, sample->direction,
-                                              float(roots.far), to_float((at - center).unit()));
+      const float pdf = emitter.pdf_li(p, EmitterView::inside, sample->direction, float(roots.far),
+                                       to_float((at - center).unit()));
       if (!(std::fabs(pdf - sample->pdf) <= 1e-4f * sample->pdf)) ++mismatches;
       const double inverse = 1.0 / sample->pdf;
       all.push_back(inverse);
@@ -380,7 +392,7 @@ TEST_CASE(
     const DVec normal = DVec{0.2, -0.9, 0.4}.unit();
     const DVec point = center + normal * r;
     const Vec3 p = to_float(point);
-    REQUIRE(emitter.view_from(p, kEmitterSphere, true) == EmitterView::inside);
+    REQUIRE(emitter.view_from({p, kEmitterSphere, true}) == EmitterView::inside);
 
     const glint::test::Moments integral = integrate_pdf(point, EmitterView::inside);
     CHECK(std::abs(integral.mean - 1.0) <= 5.0 * std::sqrt(integral.variance / (1 << 16)));
@@ -394,7 +406,7 @@ TEST_CASE(
     std::vector<double> weighted;
     int mismatches = 0, degenerate = 0;
     for (int i = 0; i < n; ++i) {
-      const auto sample = emitter.sample_direction(p, EmitterView::inside, next_2d(rng));
+      const auto sample = sample_towards(emitter, p, EmitterView::inside, next_2d(rng));
       if (!sample) {  // the sampled point fell on the shading point itself
         ++degenerate;
         continue;
@@ -402,9 +414,8 @@ TEST_CASE(
       const DVec direction = to_double(sample->direction).unit();
       const double cos_alpha = -direction.dot(normal);
       const double length = 2.0 * r * cos_alpha;  // the chord, worked out independently
-      const float pdf =
-          emitter.direction_pdf(p, EmitterView::inside, sample->direction, float(length),
-                                to_float((point + direction * length - center).unit()));
+      const float pdf = emitter.pdf_li(p, EmitterView::inside, sample->direction, float(length),
+                                       to_float((point + direction * length - center).unit()));
       if (!(std::fabs(pdf - sample->pdf) <= 1e-3f * sample->pdf)) ++mismatches;
       if (!(std::fabs(sample->pdf - cos_alpha / M_PI) <= 1e-3 * cos_alpha / M_PI)) ++mismatches;
       weighted.push_back(cos_alpha / sample->pdf);

@@ -2,6 +2,7 @@
 // Random numbers and directions for the geometry tests, from glint's own PCG32 so that a test's
 // rays are the same on every platform.
 
+#include <algorithm>
 #include <cmath>
 
 #include "glint/math/random.hpp"
@@ -21,6 +22,14 @@ inline Vec3 unit_vector(Pcg32& rng) {
     const float length2 = glm::dot(v, v);
     if (length2 > 1e-4f && length2 <= 1.0f) return v / std::sqrt(length2);
   }
+}
+
+/// A direction uniform on the unit sphere, from z uniform in [-1, 1) and the angle about z.
+inline Vec3 random_unit_vector(Pcg32& rng) {
+  const float z = uniform(rng, -1.0f, 1.0f);
+  const float phi = uniform(rng, 0.0f, 2.0f * kPi);
+  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+  return glm::normalize(Vec3(r * std::cos(phi), r * std::sin(phi), z));
 }
 
 }  // namespace glint::test

@@ -28,14 +28,8 @@ namespace {
 
 constexpr double kUnitRoundoff = 0x1p-24;  // float's unit roundoff
 
+using glint::test::random_unit_vector;
 using glint::test::uniform;
-
-Vec3 random_unit_vector(glint::Pcg32& rng) {
-  const float z = uniform(rng, -1.0f, 1.0f);
-  const float phi = uniform(rng, 0.0f, 2.0f * glint::kPi);
-  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-  return glm::normalize(Vec3(r * std::cos(phi), r * std::sin(phi), z));
-}
 
 glint::SphereRoots roots_of(const Vec3& origin, const Vec3& direction, const Vec3& center,
                             float radius) {

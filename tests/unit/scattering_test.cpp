@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "direction_cells.hpp"
 #include "glint/config.hpp"
 #include "glint/render/materials/report_material.hpp"
 #include "statistics.hpp"
@@ -19,6 +20,10 @@ using glint::Lobe;
 using glint::Material;
 using glint::ScatterSample;
 using glint::Vec3;
+
+using glint::test::cell_masses;
+using glint::test::cell_of;
+using glint::test::kCells;
 
 namespace {
 
@@ -65,40 +70,6 @@ Material diffuse_material(float diffuse, Color color) {
   m.diffuse = diffuse;
   m.diffuse_color = color;
   return m;
-}
-
-// The sphere of directions in cells of equal solid angle: bands of cos(theta) about +z (the hit's
-// outward normal) times sectors of phi. The band edges include cos = 0, where a lobe's density
-// drops to zero.
-constexpr int kBands = 16;
-constexpr int kSectors = 32;
-constexpr int kCells = kBands * kSectors;
-
-int cell_of(const Vec3& direction) {
-  const double cosine = std::clamp(double(direction.z), -1.0, 1.0);
-  const int band = std::min(int((cosine + 1.0) / 2.0 * kBands), kBands - 1);
-  const double phi = std::atan2(double(direction.y), double(direction.x));
-  const int sector = std::clamp(int((phi + kPi) / (2.0 * kPi) * kSectors), 0, kSectors - 1);
-  return band * kSectors + sector;
-}
-
-/// The probability of each cell under density `pdf` (per unit solid angle): a midpoint rule on
-/// an 8 x 8 grid per cell in (cos theta, phi), in which solid angle is area.
-template <typename Density>
-std::vector<double> cell_masses(Density&& pdf) {
-  constexpr int kSub = 8;
-  const double d_cos = 2.0 / (kBands * kSub), d_phi = 2.0 * kPi / (kSectors * kSub);
-  std::vector<double> mass(kCells, 0.0);
-  for (int i = 0; i < kBands * kSub; ++i) {
-    const double cosine = -1.0 + (i + 0.5) * d_cos;
-    const double sine = std::sqrt(std::max(0.0, 1.0 - cosine * cosine));
-    for (int j = 0; j < kSectors * kSub; ++j) {
-      const double phi = -kPi + (j + 0.5) * d_phi;
-      const Vec3 direction(float(sine * std::cos(phi)), float(sine * std::sin(phi)), float(cosine));
-      mass[std::size_t((i / kSub) * kSectors + j / kSub)] += double(pdf(direction)) * d_cos * d_phi;
-    }
-  }
-  return mass;
 }
 
 /// Chi-square of `n` directions drawn by `draw(sampler)` (a ScatterSample) against density `pdf`:

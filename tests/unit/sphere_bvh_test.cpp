@@ -18,7 +18,7 @@ namespace {
 using glint::SphereBvh;
 using glint::Vec3;
 
-struct Reference {
+struct BruteForce {
   std::vector<SphereBvh::Input> spheres;
 
   glint::SphereHit closest(const glint::Ray& ray) const {
@@ -72,7 +72,7 @@ void check_against_reference(const std::vector<SphereBvh::Input>& spheres, std::
                              float extent) {
   const SphereBvh bvh(spheres);
   REQUIRE(bvh.size() == spheres.size());
-  const Reference reference{spheres};
+  const BruteForce reference{spheres};
   glint::Pcg32 rng(seed, 3);
   int hits = 0;
   for (int i = 0; i < 4000; ++i) {
@@ -232,7 +232,7 @@ TEST_CASE("bvh matches brute force on grazing, leaving, nested and huge-sphere r
   spheres.push_back({Vec3(5.0f, 5.0f, 5.0f), 2.0f, 3001});           // duplicates: a tie
   spheres.push_back({Vec3(5.0f, 5.0f, 5.0f), 2.0f, 3002});
   const SphereBvh bvh(spheres);
-  const Reference reference{spheres};
+  const BruteForce reference{spheres};
   int hits = 0;
   for (const glint::Ray& ray : hard_rays(spheres, rng, 100.0f, 20000)) {
     const glint::SphereHit expected = reference.closest(ray);

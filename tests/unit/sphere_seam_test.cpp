@@ -21,8 +21,10 @@
 #include "glint/geometry/wall_set.hpp"
 #include "glint/math/random.hpp"
 #include "glint/scene/scene.hpp"
+#include "random_vectors.hpp"
 
 using glint::Vec3;
+using glint::test::random_unit_vector;
 
 namespace {
 
@@ -68,13 +70,6 @@ Vec3L crossing_point(const Ball& a, const Ball& b, Vec3L point) {
 Vec3L outward(const Ball& s, const Vec3L& point) {
   const Vec3L f = point - to_long(s.center);
   return (1 / std::sqrt(dot(f, f))) * f;
-}
-
-Vec3 random_unit_vector(glint::Pcg32& rng) {
-  const float z = -1.0f + 2.0f * rng.next_float();
-  const float phi = 2.0f * glint::kPi * rng.next_float();
-  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-  return glm::normalize(Vec3(r * std::cos(phi), r * std::sin(phi), z));
 }
 
 /// Two crossing spheres, A (id 0) and B (id 1), and where to look for their crossing.

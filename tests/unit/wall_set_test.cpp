@@ -27,17 +27,11 @@ namespace {
 using Long = long double;
 constexpr double kUnitRoundoff = 0x1p-24;  // float's unit roundoff
 
+using glint::test::random_unit_vector;
 using glint::test::uniform;
 
 float log_uniform(glint::Pcg32& rng, float lo_exponent, float hi_exponent) {
   return std::pow(10.0f, uniform(rng, lo_exponent, hi_exponent));
-}
-
-Vec3 random_unit_vector(glint::Pcg32& rng) {
-  const float z = uniform(rng, -1.0f, 1.0f);
-  const float phi = uniform(rng, 0.0f, 2.0f * glint::kPi);
-  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-  return glm::normalize(Vec3(r * std::cos(phi), r * std::sin(phi), z));
 }
 
 Long dot(const Long a[3], const Long b[3]) {

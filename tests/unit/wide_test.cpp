@@ -23,6 +23,7 @@
 #include "glint/policy/light_sampling.hpp"
 #include "glint/policy/path_termination.hpp"
 #include "glint/render/camera.hpp"
+#include "glint/render/lights/sphere_light.hpp"
 #include "glint/scene/emitters.hpp"
 
 namespace {
@@ -338,9 +339,11 @@ TEST_CASE(
       calls, [](auto x, auto y, auto z, auto radius, auto view, auto u, auto v) {
         using F = decltype(x);
         using V3 = glint::Vec3For<F>;
-        const auto sample = glint::sample_sphere_emitter(
-            glint::splat_vector<V3>(glint::Vec3(1.0f, -2.0f, 3.0f)), radius, V3{x, y, z},
-            view == 0.0f, view == 2.0f, glint::Vec2For<F>{u, v});
+        const glint::BasicSphereLight<F> light(
+            glint::splat_vector<V3>(glint::Vec3(1.0f, -2.0f, 3.0f)), radius,
+            glint::splat_vector<V3>(glint::Vec3(1.0f)), glint::splat<glint::UIntFor<F>>(0u));
+        const auto sample =
+            light.sample_li(V3{x, y, z}, view == 0.0f, view == 2.0f, glint::Vec2For<F>{u, v});
         const F valid = glint::select(sample.valid, glint::splat<F>(1.0f), glint::splat<F>(0.0f));
         return std::array{sample.direction.x, sample.direction.y, sample.direction.z, sample.pdf,
                           valid};

@@ -28,6 +28,7 @@
 #include "glint/render/estimators/light_tracer.hpp"
 #include "glint/render/film_splatter.hpp"
 #include "glint/render/render_settings.hpp"
+#include "glint/render/scene_lights.hpp"
 #include "glint/render/tile_grid.hpp"
 #include "glint/scene/scene.hpp"
 #include "glint/scene/scene_error.hpp"
@@ -63,7 +64,7 @@ class LightTracingExecution {
   /// Throws UnsupportedSceneError, naming the background's line, for a scene whose background
   /// is not black.
   static void check_supported(const Scene& scene) {
-    if (!LightEmission::supports(scene))
+    if (!light_paths_carry_all_light(scene))
       throw UnsupportedSceneError(scene.source(), scene.background_line(),
                                   "light tracing needs a black background: light paths leave "
                                   "from the point lights and emissive spheres only");

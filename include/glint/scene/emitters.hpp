@@ -1,7 +1,7 @@
 #pragma once
-// The emissive spheres of a scene, as light sampling sees them: each one can draw a direction
-// towards itself from a shading point and give the density of any direction that reaches it,
-// and the table chooses one emitter per light sample.
+// The emissive spheres of a scene and the choice of one per light sample: a table of the
+// spheres' centres, radii and radiances that a Float's lanes of shading points read in one
+// transpose. How a sphere light is sampled is render/lights/sphere_light.hpp.
 //
 // The choice is proportional to emitted power (area times mean radiance): it costs one binary
 // search, needs no state per shading point and is exact for a scene with one lamp, which is the
@@ -14,85 +14,14 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 #include "glint/instruction_set.hpp"
 #include "glint/math/lanes.hpp"
-#include "glint/math/sampling.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/math/wide.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
-
-/// How a shading point sees an emitter, which decides how directions towards it are drawn.
-enum class EmitterView : std::uint8_t {
-  outside,  ///< uniformly in the cone the sphere subtends (the visible cap, exactly)
-  inside,   ///< through a uniform point on the sphere's area: every point of it is visible
-  none,     ///< the point is on the emitter's outer surface: no direction from it reaches it
-};
-
-/// A direction towards an emitter and its density per unit solid angle at the shading point.
-struct EmitterDirection {
-  Vec3 direction;
-  float pdf;
-};
-
-/// A direction towards an emissive sphere for a Float's lanes of shading points (F = float: one
-/// point), with its density, and whether anything can arrive along it.
-template <typename F>
-struct BasicEmitterSample {
-  Vec3For<F> direction;
-  F pdf;
-  MaskFor<F> valid;  ///< false where the point cannot see the emitter or the sample degenerates
-};
-
-namespace detail {
-/// 1 - cos of the half-angle a sphere of radius `radius` subtends at distance `distance` from
-/// its centre: sin^2 / (1 + cos), which keeps its precision for small, distant spheres.
-template <FloatType F>
-inline F cone_one_minus_cos_max(F radius, F distance) {
-  const F sin2_max = min(splat<F>(1.0f), (radius / distance) * (radius / distance));
-  const F cos2_max =
-      max(splat<F>(0.0f), (distance - radius) * (distance + radius)) / (distance * distance);
-  return sin2_max / (1.0f + sqrt(cos2_max));
-}
-}  // namespace detail
-
-/// A direction from `point` towards the sphere (center, radius), lane by lane, from two
-/// uniform numbers: uniformly in the cone it subtends where the point sees it from `outside`,
-/// else through a uniform point of its area (every point of it is visible from inside), and
-/// nothing where the point lies on its outer surface (`none`). Each branch is computed only
-/// where some lane takes it.
-template <typename V3>
-inline BasicEmitterSample<FloatOf<V3>> sample_sphere_emitter(const V3& center, FloatOf<V3> radius,
-                                                             const V3& point,
-                                                             MaskFor<FloatOf<V3>> outside,
-                                                             MaskFor<FloatOf<V3>> none,
-                                                             const Vec2For<FloatOf<V3>>& u) {
-  using F = FloatOf<V3>;
-  BasicEmitterSample<F> sample{splat_vector<V3>(Vec3(0.0f)), splat<F>(0.0f), outside};
-  if (any(outside)) {
-    const V3 to_center = center - point;
-    const F distance = sqrt(dot(to_center, to_center));
-    const F one_minus_cos_max = detail::cone_one_minus_cos_max(radius, distance);
-    sample.direction = BasicFrame<V3>::around(to_center / distance)
-                           .to_world(sample_uniform_cone(u, one_minus_cos_max));
-    sample.pdf = uniform_cone_pdf(one_minus_cos_max);
-  }
-  if (!all(outside)) {
-    const V3 normal = sample_uniform_sphere(u);
-    const V3 to_light = center + radius * normal - point;
-    const F distance2 = dot(to_light, to_light);
-    const V3 direction = to_light / sqrt(distance2);
-    const F cosine = abs(dot(direction, normal));
-    const F area_pdf = distance2 / ((4.0f * kPi * radius * radius) * cosine);
-    sample.direction = select(outside, sample.direction, direction);
-    sample.pdf = select(outside, sample.pdf, area_pdf);
-    sample.valid = outside || (!none && distance2 > 0.0f && cosine > 0.0f);
-  }
-  return sample;
-}
 
 /// Emitters chosen for a Float's lanes of shading points, with their probabilities.
 template <typename F>
@@ -103,26 +32,6 @@ struct EmitterLanes {
   UIntFor<F> sphere;  ///< index of the sphere in the scene
   F probability;      ///< of the choice
 };
-
-/// How a Float's lanes of points see their emitters (the EmitterView of each lane as masks):
-/// `outside` where the point sees the sphere from outside, `none` where it lies on the sphere's
-/// outer surface, inside otherwise. `point_sphere` is the sphere each point lies on and
-/// `from_inside` the side of it the point is on: a point on the emitter itself sees it only
-/// from inside.
-template <typename F>
-struct EmitterViews {
-  MaskFor<F> outside;
-  MaskFor<F> none;
-};
-template <typename V3>
-EmitterViews<FloatOf<V3>> emitter_views(const V3& center, FloatOf<V3> radius,
-                                        UIntFor<FloatOf<V3>> sphere, const V3& point,
-                                        UIntFor<FloatOf<V3>> point_sphere,
-                                        MaskFor<FloatOf<V3>> from_inside) {
-  const auto on_emitter = point_sphere == sphere;
-  const V3 offset = point - center;
-  return {!on_emitter && dot(offset, offset) > radius * radius, on_emitter && !from_inside};
-}
 
 /// The mean of a colour's channels, in double: the power of a colour, as the choices by power
 /// weigh it.
@@ -166,45 +75,6 @@ struct SphereEmitter {
   std::uint32_t sphere;  ///< index of the sphere in the scene
 
   float area() const { return 4.0f * kPi * radius * radius; }
-
-  /// How `point` sees this emitter. `point_sphere` is the sphere the point lies on and
-  /// `from_inside` the side of it the point is on (a point on this emitter sees it only from
-  /// inside).
-  EmitterView view_from(const Vec3& point, std::uint32_t point_sphere, bool from_inside) const {
-    const EmitterViews<float> view =
-        emitter_views(center, radius, sphere, point, point_sphere, from_inside);
-    return view.outside ? EmitterView::outside
-           : view.none  ? EmitterView::none
-                        : EmitterView::inside;
-  }
-
-  /// A direction from `point` towards the sphere, from two uniform numbers; none when the
-  /// point cannot see it or the sample degenerates (sample_sphere_emitter for one point).
-  std::optional<EmitterDirection> sample_direction(const Vec3& point, EmitterView view,
-                                                   Vec2 u) const {
-    if (view == EmitterView::none) return std::nullopt;
-    const BasicEmitterSample<float> sample =
-        sample_sphere_emitter(center, radius, point, view == EmitterView::outside, false, u);
-    if (!sample.valid) return std::nullopt;
-    return EmitterDirection{sample.direction, sample.pdf};
-  }
-
-  /// The density with which sample_direction(point, view, .) gives `direction`, where the ray
-  /// from `point` along it meets this sphere first at distance `distance`, with outward normal
-  /// `normal` there.
-  float direction_pdf(const Vec3& point, EmitterView view, const Vec3& direction, float distance,
-                      const Vec3& normal) const {
-    if (view == EmitterView::outside) {
-      const Vec3 to_center = center - point;
-      return uniform_cone_pdf(
-          detail::cone_one_minus_cos_max(radius, std::sqrt(glm::dot(to_center, to_center))));
-    }
-    if (view == EmitterView::inside) {
-      const float cosine = std::fabs(glm::dot(direction, normal));
-      return cosine > 0.0f ? distance * distance / (area() * cosine) : 0.0f;
-    }
-    return 0.0f;
-  }
 };
 
 /// The scene's emitters and the distribution light sampling chooses them from.

@@ -42,15 +42,18 @@
 #include "glint/render/bsdf.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/estimators/path_context.hpp"
-#include "glint/render/light_emission.hpp"
+#include "glint/render/light.hpp"
+#include "glint/render/light_selection.hpp"
 #include "glint/render/materials.hpp"
 #include "glint/render/scattering.hpp"
+#include "glint/render/scene_lights.hpp"
 #include "glint/scene/scene.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
-/// What a vertex of a subpath is.
-enum class PathVertexKind : std::uint8_t { camera, point_light, sphere_light, surface };
+/// What a vertex of a subpath is: the camera, a light at a point (which only sampling finds), a
+/// light with a surface, or a surface that scatters.
+enum class PathVertexKind : std::uint8_t { camera, delta_light, area_light, surface };
 
 /// A vertex of a camera or a light subpath; `Record` is the material's record of its Bsdf there
 /// (RecordableBsdf), which the weights below never read.
@@ -59,11 +62,13 @@ struct BasicPathVertex {
   using Kind = PathVertexKind;
   Kind kind = Kind::surface;
   Vec3 point{0.0f};
-  /// The sphere's outward normal at the point; zero for the camera and a point light.
+  /// The sphere's outward normal at the point; zero for the camera and a light at a point.
   Vec3 normal{0.0f};
   /// The normal on the side the subpath arrived from (a surface).
   Vec3 facing{0.0f};
   std::uint32_t sphere = kNoSphere;
+  /// The light a light vertex lies on.
+  LightId light = 0;
   /// The subpath's weight at the vertex: what it carries there over the densities of the
   /// choices that made it (emitted radiance or importance, times f |cos| / pdf at each vertex
   /// before).
@@ -84,7 +89,7 @@ struct BasicPathVertex {
   /// at this vertex (detail::strategy_tails). Set once the subpath is complete.
   float strategy_tail = 0.0f;
 
-  bool is_light() const { return kind == Kind::point_light || kind == Kind::sphere_light; }
+  bool is_light() const { return kind == Kind::delta_light || kind == Kind::area_light; }
   /// Whether a join may end at this vertex: it scatters (or emits, or sees) in every direction.
   bool joinable() const { return kind != Kind::surface || scattering.has_density(); }
 };
@@ -103,7 +108,7 @@ float area_density(float solid_angle_pdf, const V& from, const V& to) {
   const float distance2 = glm::dot(offset, offset);
   if (!(distance2 > 0.0f)) return 0.0f;
   float pdf = solid_angle_pdf / distance2;
-  if (to.kind == PathVertexKind::surface || to.kind == PathVertexKind::sphere_light)
+  if (to.kind == PathVertexKind::surface || to.kind == PathVertexKind::area_light)
     pdf *= std::fabs(glm::dot(to.normal, offset)) / std::sqrt(distance2);
   return pdf;
 }
@@ -184,7 +189,7 @@ float other_strategies(std::span<const V> light, std::span<const V> camera,
     }
     ratio *= reverse / nonzero(light[i].pdf_forward);
     const bool before_delta =
-        i > 0 ? light_delta(i - 1) : light[0].kind == PathVertexKind::point_light;
+        i > 0 ? light_delta(i - 1) : light[0].kind == PathVertexKind::delta_light;
     if (!light_delta(i) && !before_delta) sum += ratio * ratio;
   }
   return sum;
@@ -228,7 +233,7 @@ void strategy_tails(std::span<V> v, bool light_side, const StrategyRules& rules)
         eta > 0.0f && (!light_side || m > 0) && v[m].kind == PathVertexKind::surface && !v[m].delta;
     const bool joins =
         light_side
-            ? !v[m].delta && !(m > 0 ? v[m - 1].delta : v[0].kind == PathVertexKind::point_light)
+            ? !v[m].delta && !(m > 0 ? v[m - 1].delta : v[0].kind == PathVertexKind::delta_light)
             : !v[m].delta && !v[m - 1].delta && (m > 1 || rules.light_tracing_counts);
     const float ratio = reverse / nonzero(v[m].pdf_forward);
     tail = (merges ? (eta * reverse) * (eta * reverse) : 0.0f) +
@@ -283,7 +288,7 @@ float merge_light_factor(std::span<const V> light, const StrategyRules& rules) {
   if (rules.merge_density > 0.0f && s > 1 && from.kind == PathVertexKind::surface && !from.delta)
     factor = rules.merge_density * rules.merge_density;
   const bool before_delta =
-      s > 1 ? light[s - 2].delta : light[0].kind == PathVertexKind::point_light;
+      s > 1 ? light[s - 2].delta : light[0].kind == PathVertexKind::delta_light;
   float behind = s >= 2 ? light[s - 2].strategy_tail : 0.0f;
   if (!from.delta && !before_delta) behind += 1.0f;
   return factor + behind / (nonzero(from.pdf_forward) * nonzero(from.pdf_forward));
@@ -388,7 +393,8 @@ class BidirectionalPathTracer {
                           bool light_tracing_counts)
       : scene_(scene),
         camera_(camera),
-        emission_(scene),
+        lights_(scene),
+        selection_(lights_),
         context_(scene, max_depth),
         most_vertices_(max_depth + 1),
         pixels_(pixels),
@@ -539,24 +545,27 @@ class BidirectionalPathTracer {
   /// scene has no light with power).
   std::size_t light_subpath(SamplerType& sampler, std::span<Vertex> y,
                             TraceCounters& counters) const {
-    if (emission_.empty()) return 0;
-    const float u_light = sampler.next_1d();
+    if (selection_.empty()) return 0;
+    const LightSelectionByPower::Choice choice = selection_.choose(sampler.next_1d());
     const Vec2 u_point = sampler.next_2d();
-    const LightOrigin origin = emission_.sample_origin(u_light, u_point);
-    const LightRay emitted = LightEmission::sample_ray(origin, sampler.next_2d());
-    Vertex& source = y[0];
-    source = Vertex{};
-    source.kind = origin.is_point_light() ? Kind::point_light : Kind::sphere_light;
-    source.point = origin.point;
-    source.normal = origin.normal;
-    source.sphere = origin.sphere;
-    source.beta = origin.weight;
-    source.pdf_forward = origin.density;
-    if (!(max_component(emitted.weight) > 0.0f)) return 1;
-    Color unused(0.0f);
-    return walk(emitted.ray, emitted.weight,
-                LightEmission::direction_pdf(origin, emitted.ray.direction), sampler, y, 1,
-                Transport::importance, unused, counters);
+    const Vec2 u_direction = sampler.next_2d();
+    return lights_.visit(choice.light, [&](const auto& light) {
+      const EmittedRay emitted = light.sample_le(u_point, u_direction);
+      Vertex& source = y[0];
+      source = Vertex{};
+      source.kind = light.kDeltaPosition ? Kind::delta_light : Kind::area_light;
+      source.point = emitted.ray.origin;
+      source.normal = emitted.normal;
+      source.sphere = emitted.sphere;
+      source.light = choice.light;
+      source.pdf_forward = choice.probability * emitted.position_pdf;
+      source.beta = emitted.radiance / source.pdf_forward;
+      const Color beta = source.beta * (emitted.cosine / emitted.direction_pdf);
+      if (!(max_component(beta) > 0.0f)) return std::size_t(1);
+      Color unused(0.0f);
+      return walk(emitted.ray, beta, emitted.direction_pdf, sampler, y, 1, Transport::importance,
+                  unused, counters);
+    });
   }
 
  private:
@@ -638,10 +647,10 @@ class BidirectionalPathTracer {
   }
 
   /// Density per unit area with which light vertex `v` emits towards `to`.
-  static float emission_density(const Vertex& v, const Vertex& to) {
-    const float pdf = v.kind == Kind::point_light
-                          ? LightEmission::point_direction_pdf()
-                          : LightEmission::sphere_direction_pdf(v.normal, towards(v, to));
+  float emission_density(const Vertex& v, const Vertex& to) const {
+    const float pdf = lights_.visit(v.light, [&](const auto& light) {
+      return light.pdf_le(v.normal, towards(v, to)).direction;
+    });
     return detail::area_density(pdf, v, to);
   }
 
@@ -686,8 +695,12 @@ class BidirectionalPathTracer {
   /// Surface vertex `v` on emitter `emitter` seen as the first vertex of a light subpath.
   Vertex as_light(const Vertex& v, std::uint32_t emitter) const {
     Vertex light = v;
-    light.kind = Kind::sphere_light;
-    light.pdf_forward = emission_.sphere_density(emitter);
+    light.kind = Kind::area_light;
+    light.light = lights_.sphere_light(emitter);
+    light.pdf_forward =
+        selection_.probability(light.light) * lights_.visit(light.light, [&](const auto& l) {
+          return l.pdf_le(v.normal, v.normal).position;
+        });
     return light;
   }
 
@@ -701,7 +714,7 @@ class BidirectionalPathTracer {
     const std::optional<CameraConnection> to_camera = camera_.connect(qs.point);
     if (!to_camera) return;
     Color value;
-    if (qs.kind == Kind::sphere_light)
+    if (qs.kind == Kind::area_light)
       value = qs.beta * std::fabs(glm::dot(to_camera->direction, qs.normal));
     else if (qs.kind == Kind::surface)
       value = qs.beta * qs.scattering.f(qs.facing, towards(qs, y[s - 2]), to_camera->direction) *
@@ -740,50 +753,44 @@ class BidirectionalPathTracer {
                    TraceCounters& counters) const {
     const std::size_t t = z.size();
     const Vertex& pt = z[t - 1];
-    if (emission_.empty()) return Color(0.0f);
+    if (selection_.empty()) return Color(0.0f);
     // The draws come before the test of the vertex, so that every vertex draws the same.
-    const float u_light = sampler.next_1d();
+    const LightSelectionByPower::Choice choice = selection_.choose(sampler.next_1d());
     const Vec2 u_point = sampler.next_2d();
     if (pt.kind != Kind::surface || !pt.joinable()) return Color(0.0f);
     const Vec3 to_camera_side = towards(pt, z[t - 2]);
-    const LightEmission::Choice choice = emission_.choose(u_light);
+    const bool from_inside = glm::dot(pt.facing, pt.normal) < 0.0f;
     Vertex light{};
-    Color value;
-    if (choice.point_light) {
-      const PointLight& point = scene_.lights()[choice.index];
-      light.kind = Kind::point_light;
-      light.point = point.position;
-      light.pdf_forward = choice.probability;
-      const Vec3 to_light = light.point - pt.point;
-      const float distance2 = glm::dot(to_light, to_light);
-      const Vec3 direction = to_light / std::sqrt(distance2);
-      value = pt.beta * pt.scattering.f(pt.facing, to_camera_side, direction) *
-              (std::fabs(glm::dot(direction, pt.normal)) * point.intensity /
-               (distance2 * choice.probability)) *
-              point.color;
-      if (value == Color(0.0f) || !visible(pt, light, counters)) return Color(0.0f);
-    } else {
-      const SphereEmitter& emitter = scene_.emitters()[choice.index];
-      const bool from_inside = glm::dot(pt.facing, pt.normal) < 0.0f;
-      const std::optional<EmitterDirection> sampled = emitter.sample_direction(
-          pt.point, emitter.view_from(pt.point, pt.sphere, from_inside), u_point);
-      if (!sampled || !(sampled->pdf > 0.0f)) return Color(0.0f);
-      value = pt.beta * pt.scattering.f(pt.facing, to_camera_side, sampled->direction) *
-              (std::fabs(glm::dot(sampled->direction, pt.normal)) /
-               (choice.probability * sampled->pdf)) *
-              emitter.radiance;
-      if (value == Color(0.0f)) return Color(0.0f);
-      // The light arrives where the first sphere along the direction is the emitter.
+    const Color value = lights_.visit(choice.light, [&](const auto& source) {
+      const LightSample sample =
+          source.sample_li(LightPoint{pt.point, pt.sphere, from_inside}, u_point);
+      if (!sample.valid || !(sample.pdf > 0.0f)) return Color(0.0f);
+      const Color arriving =
+          pt.beta * pt.scattering.f(pt.facing, to_camera_side, sample.direction) *
+          (std::fabs(glm::dot(sample.direction, pt.normal)) / (choice.probability * sample.pdf)) *
+          sample.radiance;
+      if (arriving == Color(0.0f)) return Color(0.0f);
+      light.kind = source.kDeltaPosition ? Kind::delta_light : Kind::area_light;
+      light.light = choice.light;
       ++counters.rays;
-      const Ray ray = ray_leaving_sphere(pt.point, sampled->direction, pt.sphere, pt.normal);
-      const std::optional<SphereHit> hit = scene_.closest_hit(ray);
-      if (!hit || hit->sphere != emitter.sphere) return Color(0.0f);
-      light.kind = Kind::sphere_light;
-      light.point = ray.at(hit->t);
-      light.normal = glm::normalize(light.point - emitter.center);
-      light.sphere = emitter.sphere;
-      light.pdf_forward = emission_.sphere_density(choice.index);
-    }
+      const Ray ray =
+          ray_leaving_sphere(pt.point, sample.direction, pt.sphere, pt.normal, sample.distance);
+      if (sample.sphere == kNoSphere) {
+        if (scene_.occluded(ray)) return Color(0.0f);
+        light.point = sample.point;
+      } else {
+        // The light arrives where the first sphere along the direction is the light's.
+        const std::optional<SphereHit> hit = scene_.closest_hit(ray);
+        if (!hit || hit->sphere != sample.sphere) return Color(0.0f);
+        light.point = ray.at(hit->t);
+        light.sphere = sample.sphere;
+      }
+      light.normal = source.surface_normal(light.point);
+      light.pdf_forward =
+          choice.probability * source.pdf_le(light.normal, -sample.direction).position;
+      return arriving;
+    });
+    if (value == Color(0.0f)) return Color(0.0f);
     const float weight = detail::join_weight(
         std::span<const Vertex>(&light, 1), z,
         {area_density_from(pt, to_camera_side, light), 0.0f, emission_density(light, pt),
@@ -820,7 +827,8 @@ class BidirectionalPathTracer {
 
   const Scene& scene_;
   const Camera& camera_;
-  LightEmission emission_;
+  SceneLights lights_;
+  LightSelectionByPower selection_;
   PathContext<C> context_;
   int most_vertices_;  ///< scattering vertices a path may have: max_depth + 1
   float pixels_;

@@ -25,9 +25,10 @@
 #include "glint/render/bsdf.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/estimators/path_context.hpp"
-#include "glint/render/light_emission.hpp"
+#include "glint/render/light_selection.hpp"
 #include "glint/render/materials.hpp"
 #include "glint/render/scattering.hpp"
+#include "glint/render/scene_lights.hpp"
 #include "glint/scene/scene.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
@@ -42,9 +43,13 @@ class LightTracer {
   using SamplerType = typename C::sampler;
 
   LightTracer(const Scene& scene, const Camera& camera, int max_depth)
-      : scene_(scene), camera_(camera), emission_(scene), max_depth_(max_depth) {}
+      : scene_(scene),
+        camera_(camera),
+        lights_(scene),
+        selection_(lights_),
+        max_depth_(max_depth) {}
 
-  const LightEmission& emission() const { return emission_; }
+  const LightSelectionByPower& selection() const { return selection_; }
 
   /// Follows one light path with values from `sampler` (started by the caller) and calls
   /// `splat(film, value)` for each of its connections to the camera: `value` is the light the
@@ -54,25 +59,28 @@ class LightTracer {
   /// sample draws).
   template <typename Splat>
   void trace(SamplerType& sampler, Splat&& splat, TraceCounters& counters) const {
-    if (emission_.empty()) return;
-    const float u_light = sampler.next_1d();
+    if (selection_.empty()) return;
+    const LightSelectionByPower::Choice choice = selection_.choose(sampler.next_1d());
     const Vec2 u_point = sampler.next_2d();
-    const LightOrigin origin = emission_.sample_origin(u_light, u_point);
-    const LightRay emitted = LightEmission::sample_ray(origin, sampler.next_2d());
+    const EmittedRay emitted = lights_.visit(choice.light, [&](const auto& light) {
+      return light.sample_le(u_point, sampler.next_2d());
+    });
     // The vertices a path may have between the light and the camera (see above).
     const int most_vertices = max_depth_ + 1;
+    // The light's emission at its point over the densities of the light and the point.
+    const Color at_light = emitted.radiance / (choice.probability * emitted.position_pdf);
 
-    // The emissive sphere seen by the camera: its radiance from the point, on both sides.
-    if (!origin.is_point_light())
+    // A light with a surface seen by the camera: its radiance from the point, on both sides.
+    if (emitted.sphere != kNoSphere)
       connect(
-          origin.point, origin.sphere, origin.normal,
+          emitted.ray.origin, emitted.sphere, emitted.normal,
           [&](const Vec3& to_camera) {
-            return origin.weight * std::fabs(glm::dot(to_camera, origin.normal));
+            return at_light * std::fabs(glm::dot(to_camera, emitted.normal));
           },
           splat, counters);
 
     Ray ray = emitted.ray;
-    Color weight = emitted.weight;
+    Color weight = at_light * (emitted.cosine / emitted.direction_pdf);
     const float start = max_component(weight);
     if (!(start > 0.0f)) return;
     for (int vertex = 1; vertex <= most_vertices; ++vertex) {
@@ -127,7 +135,8 @@ class LightTracer {
 
   const Scene& scene_;
   const Camera& camera_;
-  LightEmission emission_;
+  SceneLights lights_;
+  LightSelectionByPower selection_;
   int max_depth_;
 };
 

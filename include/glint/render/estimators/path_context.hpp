@@ -23,6 +23,9 @@
 #include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/render/bsdf.hpp"
+#include "glint/render/light.hpp"
+#include "glint/render/lights/point_light_source.hpp"
+#include "glint/render/lights/sphere_light.hpp"
 #include "glint/render/scattering.hpp"
 #include "glint/scene/scene.hpp"
 
@@ -115,20 +118,18 @@ class PathContext {
   template <typename F, typename B, typename Queue>
   void light_rays(MaskFor<F> lanes, const BasicSurfaceInteraction<F>& it, const B& bsdf,
                   Queue& queue, TraceCounters& counters) const {
-    using V3 = Vec3For<F>;
+    const BasicLightPoint<F> at{it.point, it.sphere, it.at.from_inside};
     for (const PointLight& light : scene_.lights()) {
-      const V3 to_light = splat_vector<V3>(light.position) - it.point;
-      const F distance2 = dot(to_light, to_light);
-      const F distance = sqrt(distance2);
-      const V3 direction = to_light / distance;
-      const F cosine = dot(direction, it.at.facing_normal);
-      const MaskFor<F> lit = lanes && cosine > 0.0f;
+      const BasicLightSample<F> sample = PointLightSource(light).sample_li(at);
+      const F cosine = dot(sample.direction, it.at.facing_normal);
+      const MaskFor<F> lit = lanes && sample.valid && cosine > 0.0f;
       if (!any(lit)) continue;
       counters.rays += count(lit);
       queue.shadow_rays(
-          lit, rays_leaving_spheres(it.point, direction, it.sphere, it.outward_normal, distance),
-          bsdf.template evaluate<Transport::radiance>(direction) *
-              ((light.intensity / distance2) * splat_vector<V3>(light.color)));
+          lit,
+          rays_leaving_spheres(it.point, sample.direction, it.sphere, it.outward_normal,
+                               sample.distance),
+          bsdf.template evaluate<Transport::radiance>(sample.direction) * sample.radiance);
     }
   }
 
@@ -169,23 +170,19 @@ class PathContext {
     if (!has_emitters_) return;
     const F u_choice = next_1d(draws, lanes);
     const Vec2For<F> u = next_2d(draws, lanes);
-    const EmitterLanes<F> emitter = scene_.emitters().choose_lanes(u_choice);
-    // Lanes not sampled count as outside, so that they alone never make the area branch run.
-    const EmitterViews<F> view = emitter_views(emitter.center, emitter.radius, emitter.sphere,
-                                               it.point, it.sphere, it.at.from_inside);
-    const M outside = !lanes || view.outside;
-    const M none = view.none;
-    const BasicEmitterSample<F> sample =
-        sample_sphere_emitter(emitter.center, emitter.radius, it.point, outside, none, u);
+    const EmitterLanes<F> chosen = scene_.emitters().choose_lanes(u_choice);
+    const BasicSphereLight<F> light(chosen.center, chosen.radius, chosen.radiance, chosen.sphere);
+    const BasicLightSample<F> sample =
+        light.sample_li({it.point, it.sphere, it.at.from_inside}, u, lanes);
     const V3 reflected = bsdf.template evaluate<Transport::radiance>(sample.direction);
     const M arrives = lanes && sample.valid && sample.pdf > 0.0f &&
                       (reflected.x != 0.0f || reflected.y != 0.0f || reflected.z != 0.0f);
     if (!any(arrives)) return;
-    const F light_pdf = emitter.probability * sample.pdf;
+    const F light_pdf = chosen.probability * sample.pdf;
     const F weight = C::light_sampling::light_weight(light_pdf, bounce_pdf(sample.direction));
     counters.rays += count(arrives);
-    queue.emitter_rays(arrives, continue_rays(it, sample.direction), emitter.sphere,
-                       reflected * emitter.radiance * (weight / light_pdf));
+    queue.emitter_rays(arrives, continue_rays(it, sample.direction), sample.sphere,
+                       reflected * sample.radiance * (weight / light_pdf));
   }
 
   /// Russian roulette for the lanes of `lanes` at `depth`: the lanes that go on, and in
@@ -218,12 +215,11 @@ class PathContext {
   /// chosen by a bounce with density `from_pdf` > 0.
   float emission_weight(const Vec3& origin, std::uint32_t origin_sphere, const Vec3& direction,
                         float t, const Vec3& normal, std::uint32_t index, float from_pdf) const {
-    const SphereEmitter& emitter = scene_.emitters()[index];
+    const SphereLight emitter(scene_.emitters()[index]);
     // The ray started on its origin sphere; if that is the emitter it hit, it left it inwards
     // (a ray leaving a sphere outwards cannot meet it again), so the point saw it from inside.
-    const EmitterView view = emitter.view_from(origin, origin_sphere, true);
     const float light_pdf = scene_.emitters().probability(index) *
-                            emitter.direction_pdf(origin, view, direction, t, normal);
+                            emitter.pdf_li({origin, origin_sphere, true}, direction, t, normal);
     return C::light_sampling::bounce_weight(from_pdf, light_pdf);
   }
 
