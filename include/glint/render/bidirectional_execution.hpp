@@ -92,6 +92,7 @@ class BidirectionalExecution {
     const float radius =
         first_merge_radius_ / std::sqrt(std::sqrt(std::sqrt(float(sample) + 1.0f)));
     merge_density_ = kPi * radius * radius * float(merge_grid_.path_count());
+    merge_grid_.clear();
     std::atomic<std::size_t> next_chunk{0};
     std::vector<TraceCounters> thread_counters(std::size_t(std::max(threads, 1)));
     const auto work = [&](TraceCounters& mine) {
@@ -100,16 +101,15 @@ class BidirectionalExecution {
       for (std::size_t chunk = next_chunk.fetch_add(1, std::memory_order_relaxed);
            chunk < merge_grid_.chunk_count();
            chunk = next_chunk.fetch_add(1, std::memory_order_relaxed))
-        merge_grid_.fill_chunk(
-            chunk, [&](std::size_t path, std::vector<MergeCandidate>& candidates) {
-              const std::size_t width = std::size_t(settings_.width);
-              sampler.start(light_key(PixelSample{
-                  std::uint32_t(path % width), std::uint32_t(path / width), std::uint32_t(sample),
-                  std::uint32_t(settings_.samples_per_pixel), settings_.seed}));
-              const std::size_t n = tracer_.light_subpath(sampler, vertices, mine);
-              tracer_.merge_candidates(std::span<Vertex>(vertices).first(n), merge_density_,
-                                       [&](const MergeCandidate& c) { candidates.push_back(c); });
-            });
+        merge_grid_.fill_chunk(chunk, [&](std::size_t path, auto& candidates) {
+          const std::size_t width = std::size_t(settings_.width);
+          sampler.start(light_key(PixelSample{
+              std::uint32_t(path % width), std::uint32_t(path / width), std::uint32_t(sample),
+              std::uint32_t(settings_.samples_per_pixel), settings_.seed}));
+          const std::size_t n = tracer_.light_subpath(sampler, vertices, mine);
+          tracer_.merge_candidates(std::span<Vertex>(vertices).first(n), merge_density_,
+                                   [&](const MergeCandidate& c) { candidates.push_back(c); });
+        });
     };
     {
       std::vector<std::jthread> helpers;

@@ -7,10 +7,12 @@
 // the same sample values.
 //
 // The grid is filled in chunks of consecutive paths, each chunk by one thread into storage of
-// its own, so what a chunk holds depends on its paths' indices only. The grid is a counting sort
-// of the candidates by cell, in path and vertex order, and a query visits its cells in a fixed
-// order: the candidates a camera vertex meets, and the order in which their light is added,
-// depend on the scene, the settings and the seed, never on the threads.
+// its own, so what a chunk holds depends on its paths' indices only. The chunks are then moved
+// into one array in chunk order, each released as it is moved (their pages go back to the system
+// at once: detail::PageAllocator), and sorted there by bucket in place: the candidates are held
+// once, not twice. The order within a bucket follows from the array's, and a query visits its
+// cells in a fixed order: the candidates a camera vertex meets, and the order in which their
+// light is added, depend on the scene, the settings and the seed, never on the threads.
 
 #include <algorithm>
 #include <array>
@@ -19,6 +21,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "glint/detail/page_allocator.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
 
@@ -29,24 +32,48 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 template <typename Candidate>
 class MergeGrid {
  public:
-  /// Paths per chunk: enough to keep a thread busy between its claims, few enough to share a
-  /// pass of a small image among threads.
+  /// Paths per chunk at least: enough to keep a thread busy between its claims, few enough to
+  /// share a pass of a small image among threads.
   static constexpr std::size_t kChunkPaths = 512;
+  /// Chunks at most, each its own mapping of pages (a large image has larger chunks): far below
+  /// the system's limit on mappings. The candidates' order does not depend on the chunks.
+  static constexpr std::size_t kMaxChunks = 1024;
 
   explicit MergeGrid(std::size_t paths)
-      : paths_(paths), chunks_((paths + kChunkPaths - 1) / kChunkPaths) {}
+      : paths_(paths),
+        chunk_paths_(std::max(kChunkPaths, (paths + kMaxChunks - 1) / kMaxChunks)),
+        chunks_((paths + chunk_paths_ - 1) / chunk_paths_) {}
 
   std::size_t path_count() const { return paths_; }
   std::size_t chunk_count() const { return chunks_.size(); }
+
+  using Candidates = std::vector<Candidate, detail::PageAllocator<Candidate>>;
+
+  /// A grid up to this size keeps its array from pass to pass: holding it beside the next
+  /// pass's chunks costs little, and mapping it again would cost its page faults each pass.
+  static constexpr std::size_t kKeptBytes = std::size_t(64) << 20;
+
+  /// Releases the candidates of the last pass, before the chunks of the next are filled (a small
+  /// grid keeps its storage).
+  void clear() {
+    if (sorted_.capacity() * sizeof(Candidate) > kKeptBytes) {
+      Candidates().swap(sorted_);
+      std::vector<std::uint32_t>().swap(bucket_starts_);
+    } else {
+      sorted_.clear();
+    }
+  }
 
   /// Refills chunk `chunk` with its paths' candidates: trace(path index, candidates) appends
   /// them to `candidates` in vertex order.
   template <typename Trace>
   void fill_chunk(std::size_t chunk, Trace&& trace) {
-    std::vector<Candidate>& candidates = chunks_[chunk];
+    Candidates& candidates = chunks_[chunk];
     candidates.clear();
-    const std::size_t first = chunk * kChunkPaths;
-    const std::size_t last = std::min(first + kChunkPaths, paths_);
+    // A few candidates per path without growing: each growth maps new pages.
+    candidates.reserve(4 * chunk_paths_);
+    const std::size_t first = chunk * chunk_paths_;
+    const std::size_t last = std::min(first + chunk_paths_, paths_);
     for (std::size_t path = first; path < last; ++path)
       trace(path, candidates);
   }
@@ -54,31 +81,42 @@ class MergeGrid {
   /// The merge candidates in the grid, for what a pass of light paths costs in memory.
   std::size_t candidate_count() const { return sorted_.size(); }
 
-  /// Indexes the chunks' merge candidates for queries of radius `radius`, and releases the
-  /// chunks' copies. A counting sort by bucket written straight into the grid: one pass counts
-  /// each bucket's candidates, one places them, each bucket's in path and vertex order.
+  /// Indexes the chunks' merge candidates for queries of radius `radius`: moves them into one
+  /// array in chunk order, releasing each chunk as it goes, then sorts that array by bucket in
+  /// place, bucket by bucket, each candidate swapped straight to the next free place of its own
+  /// bucket (an American flag sort).
   void build_grid(float radius) {
     radius_ = radius;
     inverse_cell_ = 1.0 / (2.0 * double(radius));
     std::size_t count = 0;
-    for (const std::vector<Candidate>& c : chunks_)
+    for (const Candidates& c : chunks_)
       count += c.size();
-    const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(1, 2 * count));
+    clear();
+    sorted_.reserve(count);
+    for (Candidates& c : chunks_) {
+      sorted_.insert(sorted_.end(), c.begin(), c.end());
+      Candidates().swap(c);
+    }
+    // About one bucket per candidate: a query meets few candidates of other cells.
+    const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(1, count));
     mask_ = buckets - 1;
-    // Bucket b's count at b + 2; after the running sum, bucket_starts_[b + 1] is where bucket b
-    // begins, the cursor its entries advance, which leaves it where bucket b ends: bucket b is
-    // then [bucket_starts_[b], bucket_starts_[b + 1]).
-    bucket_starts_.assign(buckets + 2, 0);
-    for (const std::vector<Candidate>& c : chunks_)
-      for (const Candidate& candidate : c)
-        ++bucket_starts_[bucket(cell(candidate.point, 0.0)) + 2];
-    for (std::size_t b = 2; b < bucket_starts_.size(); ++b)
+    // Bucket b's count at b + 1; after the running sum, bucket b is
+    // [bucket_starts_[b], bucket_starts_[b + 1]).
+    bucket_starts_.assign(buckets + 1, 0);
+    for (const Candidate& candidate : sorted_)
+      ++bucket_starts_[bucket_of(candidate) + 1];
+    for (std::size_t b = 1; b < bucket_starts_.size(); ++b)
       bucket_starts_[b] += bucket_starts_[b - 1];
-    sorted_.resize(count);
-    for (std::vector<Candidate>& c : chunks_) {
-      for (const Candidate& candidate : c)
-        sorted_[bucket_starts_[bucket(cell(candidate.point, 0.0)) + 1]++] = candidate;
-      std::vector<Candidate>().swap(c);
+    std::vector<std::uint32_t> next(bucket_starts_.begin(), bucket_starts_.end() - 1);
+    for (std::size_t b = 0; b < buckets; ++b) {
+      const std::uint32_t end = bucket_starts_[b + 1];
+      while (next[b] < end) {
+        const std::size_t home = bucket_of(sorted_[next[b]]);
+        if (home == b)
+          ++next[b];
+        else
+          std::swap(sorted_[next[b]], sorted_[next[home]++]);
+      }
     }
   }
 
@@ -115,6 +153,10 @@ class MergeGrid {
             std::int64_t(std::floor(double(point.z) * inverse_cell_ + shift))};
   }
 
+  std::size_t bucket_of(const Candidate& candidate) const {
+    return bucket(cell(candidate.point, 0.0));
+  }
+
   std::size_t bucket(const std::array<std::int64_t, 3>& c) const {
     const std::uint64_t h = std::uint64_t(c[0]) * 0x9e3779b97f4a7c15ull ^
                             std::uint64_t(c[1]) * 0xc2b2ae3d27d4eb4full ^
@@ -123,11 +165,12 @@ class MergeGrid {
   }
 
   std::size_t paths_;
-  std::vector<std::vector<Candidate>> chunks_;  ///< until build_grid, in path and vertex order
+  std::size_t chunk_paths_;
+  std::vector<Candidates> chunks_;  ///< until build_grid, in path and vertex order
   float radius_ = 0.0f;
   double inverse_cell_ = 0.0;
   std::size_t mask_ = 0;
-  std::vector<Candidate> sorted_;
+  Candidates sorted_;
   std::vector<std::uint32_t> bucket_starts_;
 };
 

@@ -39,6 +39,7 @@
 #include "glint/config.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/instruction_set.hpp"
+#include "glint/math/octahedral_direction.hpp"
 #include "glint/render/bsdf.hpp"
 #include "glint/render/camera.hpp"
 #include "glint/render/estimators/path_context.hpp"
@@ -349,8 +350,10 @@ float merge_weight(std::span<const V> light, std::span<const V> camera,
 struct MergeCandidate {
   Vec3 point;
   std::uint32_t sphere;
-  Color beta;         ///< the light subpath's weight at the vertex
-  Vec3 arrival;       ///< unit direction towards the vertex the light came from
+  Color beta;  ///< the light subpath's weight at the vertex
+  /// Towards the vertex the light came from, in four bytes: the candidates of a pass are the
+  /// largest thing a render holds.
+  OctahedralDirection arrival;
   float pdf_forward;  ///< the density with which the light subpath made the vertex, per unit area
   /// The light side's share of the weight's denominator per squared density, per unit solid
   /// angle, with which the merging vertex's Bsdf chooses `arrival` (merge_light_factor, with the
@@ -360,6 +363,7 @@ struct MergeCandidate {
   bool outward;          ///< the light arrived on the sphere's outer side
   bool after_delta;      ///< the vertex before went on through a delta
 };
+static_assert(sizeof(MergeCandidate) == 44);
 
 /// A camera vertex merging, with what is the same for every candidate
 /// (BidirectionalPathTracer::merge_target).
@@ -468,8 +472,8 @@ class BidirectionalPathTracer {
       if (!(geometry > 0.0f)) continue;
       const Vec3 arrival = towards(photon, from);
       const float light_factor = detail::merge_light_factor<Vertex>(y.first(k), rules);
-      visit(MergeCandidate{photon.point, photon.sphere, photon.beta, arrival, photon.pdf_forward,
-                           geometry * geometry * light_factor, std::uint16_t(k),
+      visit(MergeCandidate{photon.point, photon.sphere, photon.beta, OctahedralDirection(arrival),
+                           photon.pdf_forward, geometry * geometry * light_factor, std::uint16_t(k),
                            glm::dot(photon.facing, photon.normal) > 0.0f, from.delta});
     }
   }
@@ -510,14 +514,15 @@ class BidirectionalPathTracer {
     if (int(candidate.vertex) + target.camera_vertices - 2 > most_vertices_ ||
         candidate.sphere != pt.sphere || candidate.outward != target.outward)
       return Color(0.0f);
-    const Color value = pt.scattering.f(pt.facing, target.toward_camera, candidate.arrival);
+    const Vec3 arrival = candidate.arrival.direction();
+    const Color value = pt.scattering.f(pt.facing, target.toward_camera, arrival);
     if (value == Color(0.0f)) return Color(0.0f);
     // The camera vertex's densities for the light's direction and for the camera side's.
-    const float light_pdf = pt.scattering.pdf(pt.facing, target.toward_camera, candidate.arrival);
+    const float light_pdf = pt.scattering.pdf(pt.facing, target.toward_camera, arrival);
     if (!(light_pdf > 0.0f)) return Color(0.0f);
-    const JoinDensities join{light_pdf, 0.0f, candidate.pdf_forward,
-                             pt.scattering.pdf(pt.facing, candidate.arrival, target.toward_camera) *
-                                 target.camera_geometry};
+    const JoinDensities join{
+        light_pdf, 0.0f, candidate.pdf_forward,
+        pt.scattering.pdf(pt.facing, arrival, target.toward_camera) * target.camera_geometry};
     const float weight = detail::merge_weight_from_factors(
         join, target.factors, candidate.light_factor, candidate.after_delta,
         StrategyRules{light_tracing_counts_, target.merge_density});
