@@ -66,6 +66,12 @@ struct EmittedRay {
   float direction_pdf;
   Vec3 normal;
   std::uint32_t sphere;  ///< the light's sphere, or kNoSphere
+
+  /// The emission at the ray's origin over the densities of the light (chosen with probability
+  /// `choice`) and of the point: a light path's weight at its first vertex.
+  Color origin_weight(float choice) const { return radiance / (choice * position_pdf); }
+  /// What the light path carries along the ray.
+  Color ray_weight(float choice) const { return origin_weight(choice) * (cosine / direction_pdf); }
 };
 
 /// The densities with which sample_le gives a point and a direction from it.

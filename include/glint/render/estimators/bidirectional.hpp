@@ -564,8 +564,8 @@ class BidirectionalPathTracer {
       source.sphere = emitted.sphere;
       source.light = choice.light;
       source.pdf_forward = choice.probability * emitted.position_pdf;
-      source.beta = emitted.radiance / source.pdf_forward;
-      const Color beta = source.beta * (emitted.cosine / emitted.direction_pdf);
+      source.beta = emitted.origin_weight(choice.probability);
+      const Color beta = emitted.ray_weight(choice.probability);
       if (!(max_component(beta) > 0.0f)) return std::size_t(1);
       Color unused(0.0f);
       return walk(emitted.ray, beta, emitted.direction_pdf, sampler, y, 1, Transport::importance,

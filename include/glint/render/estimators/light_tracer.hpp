@@ -68,7 +68,7 @@ class LightTracer {
     // The vertices a path may have between the light and the camera (see above).
     const int most_vertices = max_depth_ + 1;
     // The light's emission at its point over the densities of the light and the point.
-    const Color at_light = emitted.radiance / (choice.probability * emitted.position_pdf);
+    const Color at_light = emitted.origin_weight(choice.probability);
 
     // A light with a surface seen by the camera: its radiance from the point, on both sides.
     if (emitted.sphere != kNoSphere)
@@ -80,7 +80,7 @@ class LightTracer {
           splat, counters);
 
     Ray ray = emitted.ray;
-    Color weight = at_light * (emitted.cosine / emitted.direction_pdf);
+    Color weight = emitted.ray_weight(choice.probability);
     const float start = max_component(weight);
     if (!(start > 0.0f)) return;
     for (int vertex = 1; vertex <= most_vertices; ++vertex) {
