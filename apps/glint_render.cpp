@@ -30,8 +30,7 @@
 #include <utility>
 #include <vector>
 
-#include "glint/render/path_tracing_blind_spot.hpp"
-
+#include "estimator_choice.hpp"
 #include "out_of_memory.hpp"
 #include "progress_printer.hpp"
 #include "render_command.hpp"
@@ -106,88 +105,10 @@ extern "C" int glint_render_avx512(int argc, char** argv);
 
 namespace {
 
-/// "a, b or c".
-std::string listed(const std::vector<std::string>& words) {
-  std::string text;
-  for (std::size_t i = 0; i < words.size(); ++i)
-    text.append(i == 0 ? "" : i + 1 == words.size() ? " or " : ", ").append(words[i]);
-  return text;
-}
-
-/// --estimator's lines of the help, where the program is glint-render (which takes --estimator
-/// even where the build compiled no estimator but the default: scripts name it either way);
-/// "" for a variant's own program.
-std::string estimator_help() {
-  namespace cli = glint::cli;
-  if (!cli::kHoldsEstimators) return "";
-  const std::vector<std::string>& names = cli::estimator_names();
-  const std::string automatic =
-      cli::kBlindSpotIndex
-          ? names.front() + " (the path tracer), or " + names[*cli::kBlindSpotIndex] +
-                " where a point light shines through glass or by way of a "
-                "mirror: light no path from the camera can follow"
-          : names.front();
-  const std::string text = "what renders the image: auto (the default: " + automatic + "), " +
-                           listed(names) +
-                           "; each renders the image its own program glint-render-NAME renders, "
-                           "bit for bit";
-  // Wrapped as the other options' lines are: from column 23 to column 92.
-  constexpr std::size_t kIndent = 22, kWidth = 92;
-  std::string lines = "  --estimator NAME    ";
-  std::size_t column = kIndent;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find(' ', start);
-    if (end == std::string::npos) end = text.size();
-    const std::size_t length = end - start;
-    if (column > kIndent && column + 1 + length > kWidth) {
-      lines.append("\n").append(kIndent, ' ');
-      column = kIndent;
-    } else if (column > kIndent) {
-      lines.push_back(' ');
-      ++column;
-    }
-    lines.append(text, start, length);
-    column += length;
-    start = end + 1;
-  }
-  return lines + "\n";
-}
-
-/// --estimator's value: an index in ProgramVariants, or nullopt for auto.
-std::optional<std::size_t> parse_estimator(std::string_view option, std::string_view text) {
-  namespace cli = glint::cli;
-  if (text == "auto") return std::nullopt;
-  const std::vector<std::string>& names = cli::estimator_names();
-  for (std::size_t i = 0; i < names.size(); ++i)
-    if (text == names[i]) return i;
-  std::vector<std::string> accepted{"auto"};
-  accepted.insert(accepted.end(), names.begin(), names.end());
-  throw cli::UsageError{std::string(option) + " expects " + listed(accepted) + ", got '" +
-                        std::string(text) + "'"};
-}
-
-/// The variant that renders `scene` where --estimator did not choose: the one that made the
-/// checkpoint `resumed` continues, where the program holds it; else the default variant, or the
-/// blind-spot variant where the scene has light the path tracer cannot see. The summary line
-/// names the one chosen.
-std::size_t automatic_estimator(const glint::Scene& scene,
-                                const std::optional<glint::Checkpoint>& resumed) {
-  namespace cli = glint::cli;
-  if (resumed) {
-    const std::string name = cli::dashed_variant_name(cli::PassKeeper::made_by(*resumed));
-    const std::vector<std::string>& names = cli::estimator_names();
-    for (std::size_t i = 0; i < names.size(); ++i)
-      if (names[i] == name) return i;
-  }
-  if (!cli::kBlindSpotIndex || !glint::path_tracing_blind_spot(scene)) return 0;
-  return *cli::kBlindSpotIndex;
-}
-
 int run(int argc, char** argv) {
   namespace cli = glint::cli;
   const std::string name = program_name(argc > 0 ? argv[0] : nullptr);
-  const std::string estimator_lines = estimator_help();
+  const std::string estimator_lines = cli::estimator_help();
   cli::Program program = kProgram;
   program.name = name.c_str();
   program.extra_options = estimator_lines;
@@ -197,7 +118,7 @@ int run(int argc, char** argv) {
   const cli::ExtraOption estimator_option = [&](std::string_view arg,
                                                 const std::function<std::string_view()>& value) {
     if (estimator_lines.empty() || arg != "--estimator") return false;
-    estimator = parse_estimator(arg, value());
+    estimator = cli::parse_estimator(arg, value());
     return true;
   };
   glint::Simd simd;
@@ -241,7 +162,7 @@ int run(int argc, char** argv) {
     // Without --estimator, a resumed render continues with the variant that made it.
     std::optional<glint::Checkpoint> resumed;
     if (!estimator) resumed = cli::PassKeeper::read_resumed(options);
-    const std::size_t chosen = estimator ? *estimator : automatic_estimator(scene, resumed);
+    const std::size_t chosen = estimator ? *estimator : cli::automatic_estimator(scene, resumed);
     return cli::with_program_variant(chosen, [&]<typename V>() {
       // What the messages, the summary, the checkpoint and the EXR header say is V's.
       program.variant = V::info.name;

@@ -1,10 +1,12 @@
 // glint-render-mpi: glint-render on several processes, with MPI (`mpirun -n N glint-render-mpi
 // SCENE [options]`), writing the image glint-render writes with the same options, bit for bit.
-// Built for the default variant only (GLINT_VARIANT, as glint-render), with its wavefront
-// renderer by default and its scalar one with --scalar (render_variant.hpp's with_renderer),
-// and like glint-render once per instruction set where GLINT_RENDER_SIMD_SETS says so: main
-// (x86-64) initialises MPI, reads the options and runs the chosen set's entry,
-// glint_render_mpi_<set>, which reads them again and renders.
+// It holds glint-render's estimators and chooses among them as glint-render does
+// (estimator_choice.hpp: --estimator, the checkpoint resumed, or the scene), rank 0 for every
+// rank; each with its wavefront renderer where it has one, its scalar one with --scalar
+// (render_variant.hpp's with_renderer); and like glint-render it is compiled once per
+// instruction set where GLINT_RENDER_SIMD_SETS says so: main (x86-64) initialises MPI, reads the
+// options and runs the chosen set's entry, glint_render_mpi_<set>, which reads them again and
+// renders.
 //
 // Every rank renders with all its threads (render_tiles); rank 0 also schedules,
 // gathers and writes. The render is glint-render's passes. A pixel's sum must grow sample by
@@ -14,9 +16,13 @@
 // first the tiles it rendered in the pass before, whose sums it holds, so that nothing but the
 // tile numbers is sent; once none is left, it takes tiles from the rank with the most left,
 // and rank 0 sends their sums with them. Each finished tile's sums go back to rank 0 with the
-// next request, so that after every pass rank 0 has the whole image: for the progress, a stop
-// after any pass, checkpoints (the same file as glint-render's) and the outputs. The ranks meet
-// only at the end of each pass, when rank 0 holds back their requests until the next one.
+// next request, and an estimator's splats (light paths joined to the camera, landing on any
+// pixel) are summed from every rank into rank 0's after each pass, so that after every pass
+// rank 0 has the whole image: for the progress, a stop after any pass, checkpoints (the same
+// file as glint-render's) and the outputs. The ranks meet only at the end of each pass, when
+// rank 0 holds back their requests until the next one; with vertex merging also at the end of
+// each sample index, whose light phase every rank runs for itself (the same light paths, from
+// the same keys) before its tiles of that index.
 //
 // MPI is called from each rank's main thread only (MPI_THREAD_FUNNELED), which polls it and
 // sleeps on the rendering threads' queue in between: a blocking MPI call would spin a core
@@ -32,6 +38,7 @@
 
 #include <algorithm>
 #include <csignal>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <iostream>
@@ -39,7 +46,9 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <variant>
 
+#include "estimator_choice.hpp"
 #include "glint/glint.hpp"
 #include "load_progress.hpp"
 #include "mpi_agreement.hpp"
@@ -63,10 +72,11 @@ namespace mpi = glint::cli::mpi;
 constexpr cli::Program kProgram{
     "glint-render-mpi",
     "mpirun -n N ",
-    R"(Renders SCENE (a glint scene file) with the path tracer on N processes (MPI ranks, on one
-machine or several) and writes the image glint-render writes with the same options, bit for
-bit, whatever the number of ranks and threads. Rank 0 reads SCENE and sends it to the others,
-hands out the tiles, prints the progress and writes the outputs (paths are rank 0's).)",
+    R"(Renders SCENE (a glint scene file) on N processes (MPI ranks, on one machine or several)
+with the estimator glint-render would choose, and writes the image glint-render writes with the
+same options, bit for bit, whatever the number of ranks and threads. Rank 0 reads SCENE and
+sends it to the others, hands out the tiles, prints the progress and writes the outputs (paths
+are rank 0's).)",
     R"(  --threads N         rendering threads per rank (default: the CPUs the rank may run on;
                       mpirun binds each rank to one core unless given --bind-to none)
 )",
@@ -106,6 +116,7 @@ constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGALRM, SIGXC
 struct MpiOptions {
   bool scene_everywhere = false;
   bool verbose = false;
+  std::optional<std::size_t> estimator;  ///< --estimator: an index in ProgramVariants; none: auto
 };
 
 #if defined(GLINT_RENDER_SIMD_SETS)
@@ -121,27 +132,32 @@ namespace {
 /// The command line, read the same by every rank: its status when it ends the run at once (a
 /// bad option, --help), printed by rank 0 alone.
 std::optional<int> read_command_line(const mpi::World& world, int argc, char** argv,
-                                     cli::Options& options, MpiOptions& mpi_options,
-                                     glint::Simd& simd) {
-  const auto own_option = [&](std::string_view arg, const std::function<std::string_view()>&) {
+                                     const cli::Program& program, cli::Options& options,
+                                     MpiOptions& mpi_options, glint::Simd& simd) {
+  const auto own_option = [&](std::string_view arg,
+                              const std::function<std::string_view()>& value) {
     if (arg == "--scene-everywhere") return mpi_options.scene_everywhere = true;
     if (arg == "--verbose") return mpi_options.verbose = true;
+    if (arg == "--estimator" && cli::kHoldsEstimators) {
+      mpi_options.estimator = cli::parse_estimator(arg, value());
+      return true;
+    }
     return false;
   };
   try {
-    options = cli::parse_options(argc, argv, kProgram, own_option);
-    simd = cli::run_simd(kProgram, options);
+    options = cli::parse_options(argc, argv, program, own_option);
+    simd = cli::run_simd(program, options);
   } catch (const cli::UsageError&) {
-    const cli::Failure failure = cli::current_failure(kProgram);
+    const cli::Failure failure = cli::current_failure(program);
     if (world.rank == 0) std::cerr << failure.message;
     return failure.status;
   }
   if (options.help) {
-    if (world.rank == 0) std::cout << cli::help_text(kProgram);
+    if (world.rank == 0) std::cout << cli::help_text(program);
     return 0;
   }
   if (options.list_simd) {
-    if (world.rank == 0) std::cout << cli::runnable_simd_list(kProgram);
+    if (world.rank == 0) std::cout << cli::runnable_simd_list(program);
     return 0;
   }
   return std::nullopt;
@@ -149,7 +165,8 @@ std::optional<int> read_command_line(const mpi::World& world, int argc, char** a
 
 /// Runs the program compiled for `simd`, another instruction set than this translation unit's:
 /// each rank runs the renderer of the instruction set it chose, and all give the same image.
-int run_other_simd(const mpi::World& world, glint::Simd simd, int argc, char** argv) {
+int run_other_simd(const mpi::World& world, const cli::Program& program, glint::Simd simd, int argc,
+                   char** argv) {
 #if defined(GLINT_RENDER_SIMD_SETS)
   const char* host = world.host.c_str();
   switch (simd) {
@@ -162,7 +179,7 @@ int run_other_simd(const mpi::World& world, glint::Simd simd, int argc, char** a
   }
 #endif
   if (world.rank == 0)
-    std::cerr << kProgram.name << ": error: no renderer for --simd " << glint::simd_name(simd)
+    std::cerr << program.name << ": error: no renderer for --simd " << glint::simd_name(simd)
               << " in this program\n";
   return 1;
 }
@@ -177,14 +194,15 @@ struct SceneOnRanks {
 
 /// Reads the scene (rank 0, or every rank with --scene-everywhere), sends it to every rank, and
 /// builds it there with the run's settings; the status of a failure on any rank, else 0.
-int load_scene_on_ranks(const mpi::World& world, const cli::Options& options,
-                        const MpiOptions& mpi_options, SceneOnRanks& loaded) {
+int load_scene_on_ranks(const mpi::World& world, const cli::Program& program,
+                        const cli::Options& options, const MpiOptions& mpi_options,
+                        SceneOnRanks& loaded) {
   const bool everywhere = mpi_options.scene_everywhere;
   const mpi::Clock::time_point start = mpi::Clock::now();
   mpi::LoadTimes& times = loaded.times;
   cli::LoadProgress loading(world.rank == 0 && !options.quiet, options.scene);
   std::string text;
-  if (int status = mpi::agree(world, mpi::attempt(kProgram, [&] {
+  if (int status = mpi::agree(world, mpi::attempt(program, [&] {
                                 text = mpi::scene_text(world, options, everywhere, loading, start,
                                                        times);
                               })))
@@ -196,13 +214,12 @@ int load_scene_on_ranks(const mpi::World& world, const cli::Options& options,
   std::uint64_t rank0_hash = loaded.hash;
   if (everywhere) MPI_Bcast(&rank0_hash, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
   if (int status = mpi::agree(
-          world, mpi::attempt(kProgram, [&] {
+          world, mpi::attempt(program, [&] {
             if (rank0_hash != loaded.hash)
               throw glint::Error("cannot render " + options.scene +
                                  ": its bytes here differ from rank 0's");
             loaded.scene.emplace(cli::parse_and_build(loading, std::move(text), options.scene));
             times.built = mpi::seconds_since(start);
-            glint::check_supported<Variant>(*loaded.scene);
             loaded.settings = cli::render_settings(options, *loaded.scene);
             if (!options.threads)
               loaded.settings.threads = std::min(mpi::cpus_available(), glint::limits::max_threads);
@@ -212,16 +229,40 @@ int load_scene_on_ranks(const mpi::World& world, const cli::Options& options,
   return 0;
 }
 
+/// The variant that renders, chosen by rank 0 for every rank as glint-render chooses
+/// (estimator_choice.hpp), or the status of a failure on any rank. `resumed`: rank 0's
+/// --resume checkpoint, read here where it takes part in the choice.
+std::variant<std::size_t, int> choose_variant(const mpi::World& world, const cli::Program& program,
+                                              const cli::Options& options,
+                                              const MpiOptions& mpi_options,
+                                              const glint::Scene& scene,
+                                              std::optional<glint::Checkpoint>& resumed) {
+  std::uint64_t chosen = 0;
+  if (int status = mpi::agree(world, mpi::attempt(program, [&] {
+                                if (world.rank != 0) return;
+                                if (!mpi_options.estimator)
+                                  resumed = cli::PassKeeper::read_resumed(options);
+                                chosen = mpi_options.estimator
+                                             ? *mpi_options.estimator
+                                             : cli::automatic_estimator(scene, resumed);
+                              })))
+    return status;
+  MPI_Bcast(&chosen, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  return std::size_t(chosen);
+}
+
 /// Rank 0's render, once every rank's threads have started: the passes, then the outputs.
-int render_on_rank0(const mpi::World& world, const cli::Options& options,
-                    const MpiOptions& mpi_options, const std::string& output,
-                    const SceneOnRanks& loaded, cli::PassKeeper& keeper, glint::PixelSums& sums,
-                    std::optional<mpi::RankRenderer>& renderer, int threads) {
+int render_on_rank0(const mpi::World& world, const cli::Program& program,
+                    const cli::Options& options, const MpiOptions& mpi_options,
+                    const std::string& output, const SceneOnRanks& loaded, cli::PassKeeper& keeper,
+                    glint::PixelSums& sums, std::optional<mpi::RankRenderer>& renderer, int threads,
+                    bool light_phase) {
   const glint::RenderSettings& settings = loaded.settings;
   // From here on, an error on rank 0 ends every rank (abort_run).
   try {
     const glint::RenderStart start = keeper.start();
-    mpi::Coordinator coordinator(world, settings, sums, *renderer, threads, start.sums != nullptr);
+    mpi::Coordinator coordinator(world, settings, sums, *renderer, threads, start.sums != nullptr,
+                                 light_phase);
     const glint::RenderControl control{cli::ProgressPrinter(!options.quiet), keeper.callback(),
                                        &cli::stop_requested};
     glint::RenderResult result = coordinator.render(control, start.passes_done);
@@ -231,31 +272,33 @@ int render_on_rank0(const mpi::World& world, const cli::Options& options,
     std::string lines = coordinator.report_lines(mpi_options.verbose);
     if (mpi_options.verbose)
       lines += mpi::load_line(world, loaded.times, mpi_options.scene_everywhere);
-    return cli::finish_run(kProgram, options, output, settings, std::move(result), keeper,
+    return cli::finish_run(program, options, output, settings, std::move(result), keeper,
                            {coordinator.workers(), lines, world.size});
   } catch (const glint::ImageWriteError&) {
     // The render is over and every rank has ended its work: only rank 0 fails.
-    const cli::Failure failure = cli::current_failure(kProgram);
+    const cli::Failure failure = cli::current_failure(program);
     std::cerr << failure.message;
     return failure.status;
   } catch (...) {
-    mpi::abort_run(cli::current_failure(kProgram).message);
+    mpi::abort_run(cli::current_failure(program).message);
   }
 }
 
-/// The run on every rank, its options read: the outputs checked, the scene loaded, the threads
-/// started, then the render, scheduled by rank 0.
-int render(const mpi::World& world, const cli::Options& options, const MpiOptions& mpi_options) {
-  std::string output;
-  if (int status = mpi::agree(world, mpi::attempt(kProgram, [&] {
-                                if (world.rank == 0) output = cli::check_outputs(options);
-                              })))
-    return status;
-  SceneOnRanks loaded;
-  if (int status = load_scene_on_ranks(world, options, mpi_options, loaded)) return status;
+/// The render with variant V on every rank, its scene loaded: the threads started, then the
+/// render, scheduled by rank 0.
+template <typename V>
+int render_with(const mpi::World& world, const cli::Program& program, const cli::Options& options,
+                const MpiOptions& mpi_options, const std::string& output,
+                const SceneOnRanks& loaded, std::optional<glint::Checkpoint> resumed) {
   const glint::RenderSettings& settings = loaded.settings;
-  if (int status = mpi::agree(world, mpi::attempt(kProgram, [&] {
-                                mpi::check_same_image(kProgram, options, settings);
+  const glint::Scene& scene = *loaded.scene;
+  if (int status = mpi::agree(world, mpi::attempt(program, [&] {
+                                glint::check_supported<V>(scene);
+                                mpi::check_same_image(
+                                    program, options, settings,
+                                    mpi_options.estimator
+                                        ? cli::estimator_names()[*mpi_options.estimator]
+                                        : std::string("auto"));
                               })))
     return status;
   const glint::TileGrid grid(settings);
@@ -264,51 +307,78 @@ int render(const mpi::World& world, const cli::Options& options, const MpiOption
   std::optional<cli::PassKeeper> keeper;
   std::optional<glint::PixelSums> sums;
   std::optional<mpi::RankRenderer> renderer;
-  const cli::ExecutionModel model = cli::execution_model(kProgram, options);
-  const glint::Scene& scene = *loaded.scene;
-  if (int status =
-          mpi::agree(world, mpi::attempt(kProgram, [&] {
-                       cli::with_memory_for(
-                           [&] {
-                             return cli::image_memory(settings, options.resume.has_value(),
-                                                      cli::kVariantSplats);
-                           },
-                           [&] { sums.emplace(settings.width, settings.height); });
-                       if (world.rank == 0) {
-                         keeper.emplace(kProgram, options, settings, loaded.hash);
-                         if (const glint::RenderStart start = keeper->start(); start.sums)
-                           *sums = *start.sums;
-                       }
-                       renderer.emplace(kProgram, [&](cli::TileQueue& queue) {
-                         return cli::with_renderer<Variant>(model, [&]<typename Renderer>() {
-                           return Renderer::render_tiles(scene, settings, *sums, queue);
-                         });
-                       });
-                       if (std::optional<cli::Failure> failure = renderer->started())
-                         throw glint::Error(failure->message);
-                     })))
+  const cli::ExecutionModel model = cli::execution_model(program, options);
+  if (int status = mpi::agree(
+          world, mpi::attempt(program, [&] {
+            cli::with_memory_for(
+                [&] {
+                  return cli::image_memory(settings, options.resume.has_value(), cli::kSplats<V>);
+                },
+                [&] { sums.emplace(settings.width, settings.height, cli::kSplats<V>); });
+            if (world.rank == 0) {
+              keeper.emplace(program, options, settings, loaded.hash, std::move(resumed));
+              if (const glint::RenderStart start = keeper->start(); start.sums) *sums = *start.sums;
+            }
+            renderer.emplace(program, [&](cli::TileQueue& queue) {
+              return cli::with_renderer<V>(model, [&]<typename Renderer>() {
+                return Renderer::render_tiles(scene, settings, *sums, queue);
+              });
+            });
+            if (std::optional<cli::Failure> failure = renderer->started())
+              throw glint::Error(failure->message);
+          })))
     return status;
 
   if (world.rank != 0) {
     mpi::serve(world, settings, *renderer, *sums, threads);
     return 0;
   }
-  return render_on_rank0(world, options, mpi_options, output, loaded, *keeper, *sums, renderer,
-                         threads);
+  constexpr bool kLightPhase =
+      glint::kExecutionHasLightPhase<typename glint::Renderer<V>::ExecutionModel>;
+  return render_on_rank0(world, program, options, mpi_options, output, loaded, *keeper, *sums,
+                         renderer, threads, kLightPhase);
+}
+
+/// The run on every rank, its options read: the outputs checked, the scene loaded, the variant
+/// chosen, then its render.
+int render(const mpi::World& world, cli::Program& program, const cli::Options& options,
+           const MpiOptions& mpi_options) {
+  std::string output;
+  if (int status = mpi::agree(world, mpi::attempt(program, [&] {
+                                if (world.rank == 0) output = cli::check_outputs(options);
+                              })))
+    return status;
+  SceneOnRanks loaded;
+  if (int status = load_scene_on_ranks(world, program, options, mpi_options, loaded)) return status;
+  std::optional<glint::Checkpoint> resumed;
+  const std::variant<std::size_t, int> chosen =
+      choose_variant(world, program, options, mpi_options, *loaded.scene, resumed);
+  if (const int* status = std::get_if<int>(&chosen)) return *status;
+  return cli::with_program_variant(std::get<std::size_t>(chosen), [&]<typename V>() {
+    // What the messages, the summary, the checkpoint and the EXR header say is V's.
+    program.variant = V::info.name;
+    program.has_wavefront = cli::kHasWavefront<V>;
+    program.wavefront_lanes = cli::kWavefrontLanes<V>;
+    return render_with<V>(world, program, options, mpi_options, output, loaded, std::move(resumed));
+  });
 }
 
 int run(const mpi::World& world, int argc, char** argv) {
+  cli::Program program = kProgram;
+  const std::string extra_options = cli::estimator_help() + std::string(kProgram.extra_options);
+  program.extra_options = extra_options;
+  program.chooses_variant = cli::kHoldsEstimators;
   cli::Options options;
   MpiOptions mpi_options;
   glint::Simd simd = glint::kCompiledSimd;
   if (const std::optional<int> status =
-          read_command_line(world, argc, argv, options, mpi_options, simd))
+          read_command_line(world, argc, argv, program, options, mpi_options, simd))
     return *status;
-  if (simd != glint::kCompiledSimd) return run_other_simd(world, simd, argc, argv);
+  if (simd != glint::kCompiledSimd) return run_other_simd(world, program, simd, argc, argv);
   // Once MPI is initialised, so that these handlers, not MPI's, answer the stop signals; by the
   // instruction set that renders, whose stop flag they set.
-  cli::install_signal_handlers(kProgram.name, kStopSignals);
-  return render(world, options, mpi_options);
+  cli::install_signal_handlers(program.name, kStopSignals);
+  return render(world, program, options, mpi_options);
 }
 
 }  // namespace

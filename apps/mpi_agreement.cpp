@@ -9,6 +9,7 @@
 #include <iostream>
 #include <iterator>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "glint/error.hpp"
@@ -47,15 +48,24 @@ int agree(const World& world, const std::optional<cli::Failure>& mine) {
   return chosen[1];
 }
 
+namespace {
+/// Rank 0's `text`, on every rank.
+std::string rank0_text(const std::string& text) {
+  std::uint64_t size = text.size();
+  MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  std::string rank0 = text;  // rank 0's own, elsewhere overwritten
+  rank0.resize(std::size_t(size));
+  MPI_Bcast(rank0.data(), int(size), MPI_CHAR, 0, MPI_COMM_WORLD);
+  return rank0;
+}
+}  // namespace
+
 void check_same_image(const Program& program, const Options& options,
-                      const glint::RenderSettings& settings) {
+                      const glint::RenderSettings& settings, std::string_view estimator) {
   const bool scalar = execution_model(program, options) == ExecutionModel::scalar;
   const std::string renderer = std::string(program.variant) + (scalar ? ", scalar" : ", wavefront");
-  std::uint64_t size = renderer.size();
-  MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
-  std::string rank0_renderer = renderer;  // rank 0's own, elsewhere overwritten
-  rank0_renderer.resize(std::size_t(size));
-  MPI_Bcast(rank0_renderer.data(), int(size), MPI_CHAR, 0, MPI_COMM_WORLD);
+  const std::string rank0_renderer = rank0_text(renderer);
+  const std::string rank0_estimator = rank0_text(std::string(estimator));
 
   struct Field {
     const char* name;
@@ -77,7 +87,10 @@ void check_same_image(const Program& program, const Options& options,
 
   const std::string advice =
       ": every rank must be started with the same image options (--seed, --max-depth, --spp, "
-      "--width, --height, --scalar) and the same program";
+      "--width, --height, --scalar, --estimator) and the same program";
+  if (rank0_estimator != estimator)
+    throw glint::Error("this rank has --estimator " + std::string(estimator) + ", rank 0 has " +
+                       rank0_estimator + advice);
   if (rank0_renderer != renderer)
     throw glint::Error("this rank renders with " + renderer + ", rank 0 with " + rank0_renderer +
                        advice);

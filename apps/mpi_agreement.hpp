@@ -3,6 +3,7 @@
 // message, one status for all), and on rendering the same image.
 
 #include <optional>
+#include <string_view>
 
 #include "failure.hpp"
 #include "glint/instruction_set.hpp"
@@ -28,12 +29,13 @@ std::optional<cli::Failure> attempt(const Program& program, const Step& step) {
   }
 }
 
-/// Throws unless this rank renders the image rank 0 renders: the same variant and execution
-/// model and every setting that changes the image (the thread count does not), naming the
-/// first difference. Every rank's work goes into one image, so ranks started with different
-/// options (mpirun's A : B form) would otherwise mix two renders into one. The scene's bytes
-/// are agreed on elsewhere (rank 0 sends them, or --scene-everywhere compares their hashes).
+/// Throws unless this rank renders the image rank 0 renders: the same --estimator (`estimator`:
+/// its name, or auto), variant and execution model and every setting that changes the image
+/// (the thread count does not), naming the first difference. Every rank's work goes into one
+/// image, so ranks started with different options (mpirun's A : B form) would otherwise mix two
+/// renders into one. The scene's bytes are agreed on elsewhere (rank 0 sends them, or
+/// --scene-everywhere compares their hashes).
 void check_same_image(const Program& program, const Options& options,
-                      const glint::RenderSettings& settings);
+                      const glint::RenderSettings& settings, std::string_view estimator);
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE::cli::mpi

@@ -35,21 +35,20 @@ glint::RenderResult Coordinator::render(const glint::RenderControl& control, int
         result.passes_done, result.pass_count, result.samples_per_pixel, last, samples_at_start});
   };
   first_pass_ = std::size_t(first_pass);
+  step_ = std::size_t(std::upper_bound(steps_.begin(), steps_.end(), result.samples_per_pixel) -
+                      steps_.begin());
+  const std::function<void()> report_now = [&] {
+    if (elapsed() - last_report >= 0.1) report(false);
+  };
   for (pass_ = first_pass_; pass_ < ends_.size(); ++pass_) {
     if (control.stop && control.stop->load(std::memory_order_relaxed)) break;
     const double pass_start = elapsed();
     traffic_.emplace_back();
     counting_ = &traffic_.back();
-    scheduler_.begin_pass();
-    for (int r = 1; r < world_.size; ++r)
-      if (asked_[std::size_t(r)] > 0) hand_out(r, std::exchange(asked_[std::size_t(r)], 0));
-    while (!scheduler_.pass_complete()) {
-      step();
-      if (elapsed() - last_report >= 0.1) report(false);
-      if (!scheduler_.pass_complete()) renderer_.queue().wait(kPollInterval);
-    }
+    for (; step_ < steps_.size() && steps_[step_] <= ends_[pass_]; ++step_)
+      render_step(report_now);
+    if (sums_.has_splats()) gather_splats();
     traffic_.back().seconds = elapsed() - pass_start;
-    traffic_.back().tiles_moved = scheduler_.moved();
     counting_ = &between_passes_;
     result.passes_done = int(pass_) + 1;
     result.samples_per_pixel = ends_[pass_];
@@ -107,6 +106,7 @@ std::string Coordinator::report_lines(bool verbose) const {
     total.messages_out += t.messages_out;
     total.sums_back += t.sums_back;
     total.sums_moved += t.sums_moved;
+    total.splats_in += t.splats_in;
     total.tiles_moved += t.tiles_moved;
   }
   const std::string& name = world_.program;
@@ -122,7 +122,9 @@ std::string Coordinator::report_lines(bool verbose) const {
   text += "; sent " + megabytes(total.bytes_in + total.bytes_out) + " in " +
           std::to_string(total.messages_in + total.messages_out) + " messages (sums back " +
           megabytes(total.sums_back) + ", moved " + megabytes(total.sums_moved) + ", " +
-          std::to_string(total.tiles_moved) + " tiles)\n";
+          std::to_string(total.tiles_moved) + " tiles)";
+  if (sums_.has_splats()) text += ", splats " + megabytes(total.splats_in) + " summed";
+  text += "\n";
   if (!verbose) return text;
   for (std::size_t p = 0; p < traffic_.size(); ++p) {
     const PassTraffic& t = traffic_[p];
@@ -148,7 +150,29 @@ std::string Coordinator::report_lines(bool verbose) const {
   return text;
 }
 
-void Coordinator::step() {
+void Coordinator::render_step(const std::function<void()>& report) {
+  scheduler_.begin_pass();
+  for (int r = 1; r < world_.size; ++r)
+    if (asked_[std::size_t(r)] > 0) hand_out(r, std::exchange(asked_[std::size_t(r)], 0));
+  while (!scheduler_.pass_complete()) {
+    poll_round();
+    report();
+    if (!scheduler_.pass_complete()) renderer_.queue().wait(kPollInterval);
+  }
+  counting_->tiles_moved += scheduler_.moved();
+}
+
+void Coordinator::gather_splats() {
+  // Every tile of the pass has finished, and no rank has another: no thread splats anywhere.
+  for (int r = 1; r < world_.size; ++r)
+    outbox_.send(r, kTagSplats, {});
+  outbox_.flush();
+  sum_splats(0, sums_.splats());
+  counting_->splats_in +=
+      std::uint64_t(world_.size - 1) * sums_.splats().words().size() * sizeof(std::int64_t);
+}
+
+void Coordinator::poll_round() {
   outbox_.progress();
   while (std::optional<Message> message = poll())
     receive(*message);

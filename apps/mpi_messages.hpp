@@ -1,10 +1,13 @@
 #pragma once
 // glint-render-mpi's wire format: the point-to-point messages between rank 0 and the others,
-// their fields, and their sending (never blocking) and receiving (by polling).
+// their fields, and their sending (never blocking) and receiving (by polling); and the one
+// collective of a render, the sum of the ranks' splats after each pass.
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -25,6 +28,7 @@ enum Tag : int {
   kTagAssign,    ///< 0 -> worker: tiles to render, with the sums of those it lacks
   kTagStop,      ///< 0 -> worker: the render is over
   kTagFailed,    ///< worker -> 0: what went wrong there
+  kTagSplats,    ///< 0 -> worker: the pass is over, its splats go to rank 0 (sum_splats)
 };
 
 /// The longest a rank's main thread sleeps between two looks for messages while its threads
@@ -85,6 +89,23 @@ class Unpacker {
   const char* at_;
   const char* end_;
 };
+
+/// Adds the splats of every rank to rank 0's and clears the others': called by every rank at
+/// once (rank 0 tells the others with kTagSplats), once no thread of its is rendering. Splats
+/// land on any pixel, so each rank holds those its own paths made; they are integers
+/// (image/splat_sums.hpp), whose sum is the same whatever the ranks and the order of the
+/// reduction. In slices, for MPI's int counts.
+inline void sum_splats(int rank, glint::SplatSums& splats) {
+  std::vector<std::int64_t>& words = splats.words();
+  constexpr std::size_t kSlice = std::size_t(1) << 24;  // words: 128 MiB
+  for (std::size_t at = 0; at < words.size(); at += kSlice) {
+    const int count = int(std::min(kSlice, words.size() - at));
+    std::int64_t* slice = words.data() + at;
+    MPI_Reduce(rank == 0 ? MPI_IN_PLACE : slice, slice, count, MPI_INT64_T, MPI_SUM, 0,
+               MPI_COMM_WORLD);
+  }
+  if (rank != 0) std::fill(words.begin(), words.end(), std::int64_t(0));
+}
 
 struct Message {
   int source = 0;

@@ -40,6 +40,11 @@ void serve(const World& world, const glint::RenderSettings& settings, RankRender
           stop = true;
           break;
         }
+        if (message->tag == kTagSplats && sums.has_splats()) {
+          // Every tile of the pass has finished here (rank 0 has them all): no thread splats.
+          sum_splats(world.rank, sums.splats());
+          continue;
+        }
         if (message->tag != kTagAssign) throw std::runtime_error("an unexpected message");
         Unpacker in(message->bytes);
         const auto samples = in.get<PassSamples>();

@@ -1,6 +1,7 @@
 #pragma once
 // A rank of glint-render-mpi other than 0: it renders the tiles rank 0 assigns, sending back
-// each finished tile's sums with its next request, until told to stop.
+// each finished tile's sums with its next request, and its splats after each pass, until told
+// to stop.
 
 #include "glint/image/pixel_sums.hpp"
 #include "glint/instruction_set.hpp"

@@ -1,11 +1,11 @@
 # Reads the list of named variants from include/glint/variants.hpp by compiling and running
 # cmake/list_variants.cpp, so that no CMake file or script keeps a copy of it. Sets
 #   GLINT_VARIANTS         the variant names, in the order of glint::variants::all
-#   GLINT_DEFAULT_VARIANT  the variant glint-render renders with unless told otherwise (and
-#                          glint-render-mpi always)
+#   GLINT_DEFAULT_VARIANT  the variant glint-render renders with unless told otherwise
 #   GLINT_WAVEFRONT_VARIANTS  the variants that also have the wavefront renderer
 #   GLINT_EXECUTION_<name>    the class template of variant <name>'s Renderer execution model
 #   GLINT_RENDER_ESTIMATORS   the variants glint-render holds (--estimator), the default first
+#   GLINT_BLIND_SPOT_VARIANT  the one it chooses for a scene the path tracer is blind to
 # and writes ${PROJECT_BINARY_DIR}/variants.tsv (the program's output) for bench/run-all.
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
   ${PROJECT_SOURCE_DIR}/include/glint/variants.hpp ${PROJECT_SOURCE_DIR}/cmake/list_variants.cpp)
@@ -25,6 +25,7 @@ set(GLINT_VARIANTS)
 set(GLINT_DEFAULT_VARIANT)
 set(GLINT_WAVEFRONT_VARIANTS)
 set(GLINT_RENDER_ESTIMATORS)
+set(GLINT_BLIND_SPOT_VARIANT)
 string(REPLACE "\n" ";" glint_variant_lines "${glint_variants_tsv}")
 foreach(line IN LISTS glint_variant_lines)
   if(line MATCHES "^variant\t([a-z0-9_]+)\t")
@@ -37,6 +38,8 @@ foreach(line IN LISTS glint_variant_lines)
     list(APPEND GLINT_WAVEFRONT_VARIANTS ${CMAKE_MATCH_1})
   elseif(line MATCHES "^estimator\t([a-z0-9_]+)$")
     list(APPEND GLINT_RENDER_ESTIMATORS ${CMAKE_MATCH_1})
+  elseif(line MATCHES "^blind_spot\t([a-z0-9_]+)$")
+    set(GLINT_BLIND_SPOT_VARIANT ${CMAKE_MATCH_1})
   endif()
 endforeach()
 if(NOT GLINT_VARIANTS OR NOT GLINT_DEFAULT_VARIANT)

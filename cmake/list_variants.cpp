@@ -3,7 +3,8 @@
 // "renderer<TAB>NAME<TAB>scalar|wavefront<TAB>CLASS" for each execution model a variant renders
 // with: scalar is Renderer<V> (one path at a time), whose execution model is the class template
 // CLASS (what its estimator names); wavefront is WavefrontRenderer<V>. Then
-// "estimator<TAB>NAME" for each variant glint-render holds (glint::variants::render_estimators).
+// "estimator<TAB>NAME" for each variant glint-render holds (glint::variants::render_estimators),
+// and "blind_spot<TAB>NAME": the one it chooses where the path tracer is blind.
 // Compiled and run at configure time (cmake/GlintVariants.cmake), so that variants.hpp stays
 // the only list of variants.
 
@@ -51,4 +52,6 @@ int main() {
   [&]<typename... V>(std::type_identity<std::tuple<V...>>) {
     (std::printf("estimator\t%s\n", std::string(V::info.name).c_str()), ...);
   }(std::type_identity<glint::variants::render_estimators>{});
+  std::printf("blind_spot\t%s\n",
+              std::string(glint::variants::blind_spot_variant::info.name).c_str());
 }

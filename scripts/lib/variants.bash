@@ -5,7 +5,8 @@
 # glint::variants::all, then "default<TAB>NAME", then
 # "renderer<TAB>NAME<TAB>scalar|wavefront<TAB>CLASS" for each execution model a variant renders
 # with (CLASS: the C++ class template of that execution model), then "estimator<TAB>NAME" for
-# each variant glint-render holds (its --estimator choices, the default first).
+# each variant glint-render holds (its --estimator choices, the default first), then
+# "blind_spot<TAB>NAME", the one it chooses for a scene the path tracer is blind to.
 
 # glint_variants_check TSV: fails, saying why, unless TSV is such a file with `report` first.
 glint_variants_check() {
@@ -20,6 +21,7 @@ glint_variants_check() {
     $1 == "default" && NF == 2 { defaults++; next }
     $1 == "renderer" && NF == 4 && ($3 == "scalar" || $3 == "wavefront") && $4 ~ /^glint::[A-Za-z]+$/ { next }
     $1 == "estimator" && NF == 2 && $2 ~ /^[a-z0-9_]+$/ { next }
+    $1 == "blind_spot" && NF == 2 && $2 ~ /^[a-z0-9_]+$/ { next }
     { printf "%s:%d: not a variant line: %s\n", FILENAME, FNR, $0 > "/dev/stderr"; bad = 1 }
     END {
       if (bad) exit 1

@@ -1,16 +1,17 @@
 #!/usr/bin/env bash
 # glint-render-mpi's promises, run under mpirun:
 #
-#   mpi_render_test.bash CASE MPIEXEC MPI_PROGRAM PROGRAM VARIANT SOURCE_DIR SCRATCH [ARGS...]
+#   mpi_render_test.bash CASE MPIEXEC MPI_PROGRAM PROGRAM DEFAULT SOURCE_DIR SCRATCH [ARGS...]
 #
 # CASE is one of the functions below named case_*; it runs MPI_PROGRAM (glint-render-mpi) under
-# MPIEXEC and PROGRAM (glint-render) with --estimator VARIANT (glint-render-mpi's variant) in
-# the empty directory SCRATCH; ARGS go to the case. mpirun runs as root in CI: the caller sets OMPI_ALLOW_RUN_AS_ROOT and
-# OMPI_ALLOW_RUN_AS_ROOT_CONFIRM. Ranks may outnumber the cores (--oversubscribe). Exit status
-# 0 on success, 1 on a failure, with the reason on stderr.
+# MPIEXEC and PROGRAM (glint-render) in the empty directory SCRATCH; ARGS go to the case.
+# DEFAULT is the programs' default estimator (the path tracer), which the long render names. mpirun
+# runs as root in CI: the caller sets OMPI_ALLOW_RUN_AS_ROOT and OMPI_ALLOW_RUN_AS_ROOT_CONFIRM.
+# Ranks may outnumber the cores (--oversubscribe). Exit status 0 on success, 1 on a failure,
+# with the reason on stderr.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../support/bash_case.bash"
-case_name=$1 mpiexec=$2 mpi_program=$3 program=$4 variant=$5 source_dir=$6 scratch=$7
+case_name=$1 mpiexec=$2 mpi_program=$3 program=$4 default_estimator=$5 source_dir=$6 scratch=$7
 shift 7
 
 enter_scratch "$scratch"
@@ -22,9 +23,8 @@ mpirun_n() { # RANKS ARGS...
   "$mpiexec" --oversubscribe --bind-to none -n "$ranks" "$@"
 }
 
-# glint-render with glint-render-mpi's variant.
 glint_render() {
-  "$program" --estimator "$variant" "$@"
+  "$program" "$@"
 }
 
 no_temporaries() {
@@ -37,30 +37,57 @@ no_temporaries() {
 # per pixel: passes of 1, 1, 2, 4, 4 and 1 samples with at most 4 per pass.
 lamp_room=$source_dir/bench/scenes/lamp-room.scene
 small=(--width 72 --height 56 --spp 13 --max-depth 8 --seed 3)
+# A point light above a glass ball above a floor, on black: glint-render chooses vertex merging
+# for it, and every estimator renders it (light tracing needs the black background).
+caustic=$source_dir/docs/images/glass-ball-caustic.scene
 
-# The same bytes, PNG and PFM, as glint-render's, for RANKS ranks of THREADS threads each.
+# The same bytes, PNG and PFM, as glint-render's, for RANKS ranks of THREADS threads each, the
+# summary naming the variant that rendered (VARIANT: a pattern).
 case_same_bytes() { # RANKS THREADS [OPTION...]: OPTIONs for both programs (--scalar, --simd)
-  local ranks=$1 threads=$2
-  shift 2
-  glint_render "$lamp_room" "${small[@]}" "$@" -o one.png --hdr one.pfm --quiet ||
+  same_bytes_of "$lamp_room" "[a-z_]+" "$@"
+}
+
+# case_same_bytes of SCENE, whose summary names VARIANT.
+same_bytes_of() { # SCENE VARIANT RANKS THREADS [OPTION...]
+  local scene=$1 variant=$2 ranks=$3 threads=$4
+  shift 4
+  glint_render "$scene" "${small[@]}" "$@" -o one.png --hdr one.pfm --quiet ||
     fail "glint-render failed (status $?)"
-  mpirun_n "$ranks" "$mpi_program" "$lamp_room" "${small[@]}" "$@" --threads "$threads" \
+  mpirun_n "$ranks" "$mpi_program" "$scene" "${small[@]}" "$@" --threads "$threads" \
     -o many.png --hdr many.pfm 2>err.log || fail "glint-render-mpi failed (status $?)"
   cmp one.png many.png || fail "the PNG differs from glint-render's"
   cmp one.pfm many.pfm || fail "the PFM differs from glint-render's"
   local model="[a-z]+" simd="[a-z0-9]+"
   [[ " $* " == *" --scalar "* ]] && model=scalar
   [[ " $* " == *" --simd scalar "* ]] && simd=scalar
-  local summary="^glint-render-mpi \([a-z_]+, $model, $simd, (one path at a time|[0-9]+ paths at once)\): .*lamp-room\.scene -> many\.png: 72x56, 13 spp, depth 8 in [0-9.]+ s on $ranks ranks? x $threads threads: "
-  grep -Eq "$summary" err.log || fail "no summary line naming $ranks ranks x $threads threads"
+  local name=${scene##*/}
+  local summary="^glint-render-mpi \($variant, $model, $simd, (one path at a time|[0-9]+ paths at once)\): .*${name//./\\.} -> many\.png: 72x56, 13 spp, depth 8 in [0-9.]+ s on $ranks ranks? x $threads threads: "
+  grep -Eq "$summary" err.log || fail "no summary line naming $variant on $ranks ranks x $threads threads"
   grep -Eq "^glint-render-mpi: idle: rank 0 [0-9.]+ s \([0-9]+%\)" err.log || fail "no idle line"
   no_temporaries
 }
 
+# Each estimator over MPI, on the caustic scene: glint-render's bytes, the splats of every rank
+# summed (and, for vertex merging, every rank's own light phase of each sample index).
+case_estimator_same_bytes() { # RANKS THREADS ESTIMATOR: a name, or auto (vcm, by the scene)
+  local ranks=$1 threads=$2 estimator=$3
+  local variant=${estimator//-/_}
+  [[ $estimator == auto ]] && variant=vcm
+  same_bytes_of "$caustic" "$variant" "$ranks" "$threads" --estimator "$estimator"
+  if [[ $estimator != auto ]]; then
+    grep -Eq "^glint-render-mpi: idle: .*, splats [0-9.]+ [kMG]?B summed$" err.log ||
+      fail "the idle line does not say what the splats' sum took"
+  fi
+}
+
 # A checkpoint of either program resumes under the other, to the uninterrupted bytes; both
-# write the same checkpoint after the first pass.
-case_resume_across() {
-  local args=("$lamp_room" "${small[@]}" --quiet)
+# write the same checkpoint after the first pass. On the lamp room (the path tracer), or with
+# "caustic" on the caustic scene: vertex merging, which splats and has a light phase, chosen
+# again from the checkpoint when resumed.
+case_resume_across() { # [caustic]
+  local scene=$lamp_room
+  [[ ${1:-} == caustic ]] && scene=$caustic
+  local args=("$scene" "${small[@]}" --quiet)
   glint_render "${args[@]}" -o full.png --hdr full.pfm || fail "the full render failed"
   glint_render "${args[@]}" -o a.png --time-limit 0 --checkpoint one.ck || fail "glint-render: $?"
   mpirun_n 2 "$mpi_program" "${args[@]}" --threads 1 -o b.png --hdr b.pfm --resume one.ck \
@@ -100,8 +127,9 @@ case_scene_error() {
 case_different_settings() {
   local args=("$lamp_room" "${small[@]}" --threads 1 -o out.png)
   local other expected
-  for other in "--seed 4" "--max-depth 2" "--spp 12" "--scalar"; do
+  for other in "--seed 4" "--max-depth 2" "--spp 12" "--scalar" "--estimator vcm"; do
     case $other in
+      --estimator*) expected="this rank has --estimator vcm, rank 0 has auto" ;;
       --seed*) expected="this rank has seed 4, rank 0 has 3" ;;
       --max-depth*) expected="this rank has max depth 2, rank 0 has 8" ;;
       --spp*) expected="this rank has samples per pixel 12, rank 0 has 13" ;;
@@ -131,11 +159,11 @@ case_bad_option() {
     fail "not one pointer to --help"
 }
 
-# A render long enough to be stopped or killed while it runs: 37 passes of tiny.scene (about
-# 4 s on 2 ranks of a Zen 5 with the wavefront renderer; at a quarter of the pixels it could end
-# before the signal arrived).
+# A render long enough to be stopped or killed while it runs: 37 passes of tiny.scene by the
+# path tracer (about 4 s on 2 ranks of a Zen 5 with the wavefront renderer; at a quarter of the
+# pixels it could end before the signal arrived).
 long_render=("$source_dir/tests/cli/scenes/tiny.scene" --width 320 --height 240 --spp 1024
-             --max-depth 3 --threads 1 -o out.png --hdr out.pfm)
+             --max-depth 3 --threads 1 --estimator "$default_estimator" -o out.png --hdr out.pfm)
 
 # Starts RANKS ranks of the long render in the background (stderr to err.log, so progress comes
 # as a line per tenth) and returns once a line shows at least 10% done. Sets $pid to mpirun's.

@@ -1,8 +1,9 @@
 # glint-render-mpi under mpirun (label `mpi`), where MPI was found and glint-render-mpi built:
-# the bytes of glint-render's image with the default variant (glint-render-mpi's) for 1, 2 and 3
-# ranks (and with --scalar, and with --simd scalar), checkpoints resumed across the two
-# programs, a scene error printed once, ranks started with different settings refused, a bad
-# option, a rank killed mid-render, and a stop by a signal (tests/mpi/mpi_render_test.bash). Ranks outnumber the cores with --oversubscribe; CI
+# the bytes of glint-render's image for 1, 2 and 3 ranks (and with --scalar, and with --simd
+# scalar), every estimator's (their splats summed over the ranks, vertex merging's light phase
+# run by each), checkpoints resumed across the two programs, a scene error printed once, ranks
+# started with different settings refused, a bad option, a rank killed mid-render, and a stop by
+# a signal (tests/mpi/mpi_render_test.bash). Ranks outnumber the cores with --oversubscribe; CI
 # runs as root, which Open MPI refuses unless told otherwise.
 if(NOT TARGET glint-render-mpi OR NOT MPIEXEC_EXECUTABLE)
   return()
@@ -13,12 +14,12 @@ if(NOT GLINT_BASH)
 endif()
 
 # glint_mpi_test(NAME CASE [ARGS...]): the script's case CASE with ARGS.
-string(REPLACE "_" "-" glint_mpi_variant ${GLINT_DEFAULT_VARIANT})
+string(REPLACE "_" "-" glint_mpi_default ${GLINT_DEFAULT_VARIANT})
 function(glint_mpi_test name case)
   add_test(NAME "mpi: ${name}"
            COMMAND ${GLINT_BASH} ${CMAKE_CURRENT_LIST_DIR}/mpi_render_test.bash ${case}
                    ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:glint-render-mpi>
-                   $<TARGET_FILE:glint-render> ${glint_mpi_variant} ${PROJECT_SOURCE_DIR}
+                   $<TARGET_FILE:glint-render> ${glint_mpi_default} ${PROJECT_SOURCE_DIR}
                    ${PROJECT_BINARY_DIR}/mpi-test/${name} ${ARGN})
   # Root is refused unless allowed; in a container without ptrace rights, Open MPI's
   # shared-memory single copy (CMA) fails: plain copies are as good for these small renders.
@@ -33,6 +34,17 @@ glint_mpi_test(same-bytes-3-ranks same_bytes 3 2)
 glint_mpi_test(same-bytes-2-ranks-scalar same_bytes 2 1 --scalar)
 # The x86-64 renderer (--simd scalar; every CPU runs it): the same bytes.
 glint_mpi_test(same-bytes-2-ranks-simd-scalar same_bytes 2 1 --simd scalar)
+# Every estimator glint-render holds that the build compiled, and the choice from the scene.
+foreach(estimator IN LISTS GLINT_RENDER_ESTIMATORS)
+  if(estimator IN_LIST GLINT_BUILT_VARIANTS AND NOT estimator STREQUAL GLINT_DEFAULT_VARIANT)
+    string(REPLACE "_" "-" dashed ${estimator})
+    glint_mpi_test(same-bytes-3-ranks-${dashed} estimator_same_bytes 3 1 ${dashed})
+  endif()
+endforeach()
+if(GLINT_BLIND_SPOT_VARIANT IN_LIST GLINT_BUILT_VARIANTS)
+  glint_mpi_test(same-bytes-2-ranks-auto estimator_same_bytes 2 2 auto)
+  glint_mpi_test(resume-vcm-across-programs resume_across caustic)
+endif()
 glint_mpi_test(resume-across-programs resume_across)
 glint_mpi_test(scene-error scene_error)
 glint_mpi_test(bad-option bad_option)

@@ -61,19 +61,4 @@ TEST_CASE("vertex merging: the bias of a large radius is caught", "[render][ligh
   CHECK_FALSE(family.rejected().empty());
 }
 
-TEST_CASE("vertex merging: render_tiles, whose tiles lack the light phase, is refused",
-          "[render][light]") {
-  const glint::Scene scene =
-      glint::Scene::build(glint::read_scene_text(caustic_reference::kCaustic, "caustic"));
-  const glint::RenderSettings settings = glint::RenderSettings::from(scene);
-  glint::PixelSums sums(settings.width, settings.height, true);
-  struct NoWork {
-    std::optional<glint::TileWork> next() { return std::nullopt; }
-    void finished(const glint::TileWork&) {}
-  } none;
-  CHECK_THROWS_AS((glint::Renderer<Chain, glint::VertexMergingExecution<Chain>>::render_tiles(
-                      scene, settings, sums, none)),
-                  glint::SettingsError);
-}
-
 }  // namespace vertex_merging_test

@@ -232,9 +232,15 @@ class Renderer {
   /// sums built piece by piece, in any order and by any number of calls (in other processes
   /// too), are render()'s bit for bit as long as each pixel's samples come in index order.
   /// The result counts what this call rendered: its samples, rays, invalid samples, threads
-  /// and time. Throws as render() does, before any work is asked for, SettingsError for sums
-  /// of another size, and SettingsError for an execution model with a light phase (vertex
-  /// merging), whose tiles need the light paths of the whole image.
+  /// and time. Throws as render() does, and, before any work is asked for, SettingsError for
+  /// sums of another size or without the splat layer the execution model needs.
+  ///
+  /// With a light phase (vertex merging: kExecutionHasLightPhase), a sample index's tiles need
+  /// that index's light phase, which this call runs, on all its threads, before the first of
+  /// them; it holds one index's light phase at a time. So a source should hand out pieces of
+  /// one sample index each, and the next index's only once the last index's have finished (as
+  /// render() does, and glint-render-mpi): any other order gives the same sums, with the light
+  /// phase run again at each change of index, and its threads waiting for each other there.
   template <TileWorkSource Source>
   static RenderStats render_tiles(const Scene& scene, const RenderSettings& settings,
                                   PixelSums& sums, Source& source) {
@@ -405,6 +411,71 @@ class Renderer {
     ~StopWorkersOnExit() { schedule.stop(); }
   };
 
+  /// render_tiles's light phases (where E has them): the sample index whose light phase the
+  /// execution holds, and the threads rendering tiles with it. A thread that needs another
+  /// index waits until none renders, runs that index's light phase (on every thread: the
+  /// others wait) and renders its tile; a thread that needs the index held renders at once.
+  /// Each light phase is followed by at least one tile of its index, so the threads always
+  /// move on, whatever order the pieces come in.
+  class LightPhases {
+   public:
+    LightPhases(E& execution, int threads) : execution_(execution), threads_(threads) {}
+
+    /// Renders sample `sample` of a tile by `render`, after its index's light phase.
+    template <typename Render>
+    void with_light_phase(int sample, const Render& render) {
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        changed_.wait(lock, [&] { return !preparing_ && (held_ == sample || rendering_ == 0); });
+        if (held_ != sample) {
+          // No thread renders, and none can begin: the light phase has the execution to itself.
+          preparing_ = true;
+          lock.unlock();
+          if constexpr (kExecutionHasLightPhase<E>)
+            execution_.prepare_sample(sample, threads_, counters_);
+          lock.lock();
+          held_ = sample;
+          preparing_ = false;
+          changed_.notify_all();
+        }
+        ++rendering_;
+      }
+      render();
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (--rendering_ == 0) changed_.notify_all();
+    }
+    const E& execution() const { return execution_; }
+    /// The light phases' rays; read once the threads have ended.
+    const TraceCounters& counters() const { return counters_; }
+
+   private:
+    E& execution_;
+    const int threads_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    int held_ = -1;  ///< the sample index of the light phase held, or -1
+    int rendering_ = 0;
+    bool preparing_ = false;
+    TraceCounters counters_;
+  };
+
+  /// A rendering thread of render_tiles with light phases: the work of `source` until it has
+  /// none left, each sample index of a piece after its light phase.
+  template <typename Source>
+  static void work_after_light_phases(Source& source, const TileGrid& grid, LightPhases& phases,
+                                      typename E::ThreadState& state, PixelSums& sums,
+                                      PaddedCounters& mine) {
+    std::uint64_t samples = 0;
+    for (std::optional<TileWork> piece = source.next(); piece; piece = source.next()) {
+      for (int s = piece->first_sample; s < piece->last_sample; ++s)
+        phases.with_light_phase(s, [&] {
+          phases.execution().render_tile(state, grid.tile(piece->tile), s, s + 1, sums,
+                                         mine.counters, mine.samples, samples);
+        });
+      source.finished(*piece);
+    }
+  }
+
   /// A rendering thread: the work of `source` until it has none left.
   template <typename Source>
   static void work(Source& source, const TileGrid& grid, const E& execution,
@@ -534,23 +605,24 @@ RenderStats Renderer<C, E>::render_tiles(const Scene& scene, const RenderSetting
   if (sums.has_splats() != kExecutionSplats<E>)
     throw SettingsError(sums.has_splats() ? "glint: sums with splats for a renderer that makes none"
                                           : "glint: sums without the splats this renderer makes");
-  if constexpr (kExecutionHasLightPhase<E>)
-    throw SettingsError(std::string("glint: ") + E::kName +
-                        " renders only whole renders (render()): its light phase is shared by "
-                        "every tile of a sample index");
   const auto start = std::chrono::steady_clock::now();
-  const E execution(scene, settings);
+  E execution(scene, settings);
   const TileGrid grid(settings);
   const int thread_count = threads_for(settings, grid.count);
   std::vector<PaddedCounters> counters(static_cast<std::size_t>(thread_count));
   std::vector<typename E::ThreadState> states = thread_states(execution, thread_count);
+  LightPhases light_phases(execution, thread_count);
   {
     // Declared before the threads, so that it outlives them: each reads it until it ends.
     StartGate gate;
     std::vector<std::jthread> threads;
     try {
       start_threads(threads, thread_count, [&](int t) {
-        if (gate.wait())
+        if (!gate.wait()) return;
+        if constexpr (kExecutionHasLightPhase<E>)
+          work_after_light_phases(source, grid, light_phases, states[std::size_t(t)], sums,
+                                  counters[std::size_t(t)]);
+        else
           work(source, grid, execution, states[std::size_t(t)], sums, counters[std::size_t(t)]);
       });
     } catch (...) {
@@ -565,6 +637,8 @@ RenderStats Renderer<C, E>::render_tiles(const Scene& scene, const RenderSetting
     stats.invalid_samples += c.counters.invalid_samples;
     stats.samples += c.samples.load(std::memory_order_relaxed);
   }
+  stats.rays += light_phases.counters().rays;
+  stats.invalid_samples += light_phases.counters().invalid_samples;
   stats.threads = thread_count;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
