@@ -20,6 +20,7 @@
 #include "glint/render/bidirectional_execution.hpp"
 #include "glint/render/light_tracing_execution.hpp"
 #include "glint/render/renderer.hpp"
+#include "lens_scene.hpp"
 #include "renderer_types.hpp"
 #include "same_bits.hpp"
 
@@ -251,6 +252,9 @@ TEST_CASE("bidirectional: agrees with the path tracer wherever the path tracer s
     CHECK(lit > 0.01);
   };
   compare.operator()<Chain>(kLampRoom, "lamp room");
+  const std::string lamp_room_through_lens =
+      glint_test::through_lens(kLampRoom, "aperture=6 focus=18");
+  compare.operator()<Chain>(lamp_room_through_lens.c_str(), "lamp room through a lens");
   // Through pixel centres no join to the camera lands on a pixel: light tracing has no weight,
   // and the other strategies carry all of it.
   compare.operator()<PixelCentres>(kLampRoom, "lamp room through pixel centres");

@@ -1,9 +1,9 @@
 // Light tracing (render/light_tracing_execution.hpp) in whole renders: the same bits whatever
 // the threads, tiles and passes; the same image as the path tracer wherever both see all the
-// light (a diffuse room under lamps, and a diffuse ball seen from inside the glass that holds it,
-// which checks the adjoint scaling at refraction); and a point light's caustic under a glass
-// ball against the irradiance a deterministic fan of rays through the ball gives, worked out in
-// the test with its own ray-sphere and Fresnel arithmetic.
+// light (a diffuse room under lamps, also through a thin lens, and a diffuse ball seen from inside
+// the glass that holds it, which checks the adjoint scaling at refraction); and a point light's
+// caustic under a glass ball against the irradiance a deterministic fan of rays through the ball
+// gives, worked out in the test with its own ray-sphere and Fresnel arithmetic.
 
 #include <algorithm>
 #include <array>
@@ -20,6 +20,7 @@
 #include "glint/io/scene_reader.hpp"
 #include "glint/render/light_tracing_execution.hpp"
 #include "glint/render/renderer.hpp"
+#include "lens_scene.hpp"
 #include "renderer_types.hpp"
 #include "same_bits.hpp"
 
@@ -93,7 +94,10 @@ TEST_CASE("light tracing: the same bits for any threads, tiles and passes, and a
 TEST_CASE("light tracing: agrees with the path tracer where the camera sees diffuse surfaces",
           "[render][light][statistical]") {
   glint_test::ComparisonFamily family;
-  for (const auto& [text, name] : {std::pair{kRoom, "room"}, {kInsideGlass, "inside glass"}}) {
+  const std::string room_through_lens = glint_test::through_lens(kRoom, "aperture=6 focus=18");
+  for (const auto& [text, name] : {std::pair{std::string(kRoom), "room"},
+                                   {std::string(kInsideGlass), "inside glass"},
+                                   {room_through_lens, "room through a lens"}}) {
     const glint::Scene scene = build(text, name);
     const glint::RenderSettings settings = glint::RenderSettings::from(scene);
     // The scenes' samples per pixel are light tracing's.

@@ -1,9 +1,9 @@
 // The wavefront execution model against the scalar one. With the same seed, WavefrontRenderer<V>
 // must give Renderer<V>'s image bit for bit for every chain variant, whether it shades eight
 // paths at a time or one (a policy without a lane-wise form), on the bench scenes, the report's
-// scenes and a scene that mixes every material and light. Its own bookkeeping (the batch
-// refilled from the next samples, the window of samples waiting to be added to their pixels,
-// tiles and passes) must not change a bit of the image. The physical checks
+// scenes and a scene that mixes every material and light (also through a thin lens). Its own
+// bookkeeping (the batch refilled from the next samples, the window of samples waiting to be added
+// to their pixels, tiles and passes) must not change a bit of the image. The physical checks
 // (analytic_sphere_test, physics_test) and the pass and tile tests (passes_test) also run it.
 
 #include <catch2/catch.hpp>
@@ -19,6 +19,7 @@
 #include "glint/render/renderer.hpp"
 #include "glint/render/wavefront/wavefront_renderer.hpp"
 #include "glint/variants.hpp"
+#include "lens_scene.hpp"
 #include "renderer_types.hpp"
 
 namespace {
@@ -121,6 +122,11 @@ TEMPLATE_LIST_TEST_CASE(
   settings.threads = 2;
   glint_test::check_same_image<glint::Renderer<TestType>, glint::WavefrontRenderer<TestType>>(
       scene, settings);
+  // Through a thin lens: each lane's lens point drawn after its filter offset, as one path's.
+  const glint::Scene lens = glint::Scene::build(glint::read_scene_text(
+      glint_test::through_lens(kMixedScene, "aperture=3 focus=30"), "wavefront, lens"));
+  glint_test::check_same_image<glint::Renderer<TestType>, glint::WavefrontRenderer<TestType>>(
+      lens, settings);
 }
 
 TEST_CASE("the wavefront image depends neither on tiles nor on passes", "[render][wavefront]") {

@@ -1,5 +1,7 @@
-// The pinhole camera: ray directions implied by the field of view and aspect ratio, the near
-// clipping plane, and the rejection of degenerate cameras by validate().
+// The camera: ray directions implied by the field of view and aspect ratio, the near clipping
+// plane, connections back to the film, the importance integrating to the pixels, and with a thin
+// lens its rays meeting on the plane in focus and the blur circle of the lens equation; and the
+// rejection of degenerate cameras by validate().
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -31,6 +33,38 @@ glint::CameraDescription oblique_camera() {
 double angle_between(const Vec3& a, const Vec3& b) {
   const double cosine = glm::dot(glm::normalize(a), glm::normalize(b));
   return std::acos(std::clamp(cosine, -1.0, 1.0));
+}
+
+/// A camera at distance `distance` on the z axis, looking at the origin.
+glint::CameraDescription axis_camera(float distance, float fov_degrees, float aperture) {
+  glint::CameraDescription description;
+  description.position = {0.0f, 0.0f, distance};
+  description.look_at = {0.0f, 0.0f, 0.0f};
+  description.fov_degrees = fov_degrees;
+  description.aperture = aperture;
+  return description;
+}
+
+/// The integral of importance x cos over the part of the plane z = 0 that a width x height film
+/// of `description` sees (its centre at the origin), by the midpoint rule; `connect(point)`
+/// joins a point to the camera.
+template <typename Connect>
+double importance_over_window(const glint::CameraDescription& description, int width, int height,
+                              const Connect& connect) {
+  const double half_height =
+      double(description.position.z) * std::tan(0.5 * description.fov_degrees * M_PI / 180.0);
+  const double half_width = half_height * width / height;
+  constexpr int kSteps = 400;
+  double sum = 0.0;
+  for (int i = 0; i < kSteps; ++i)
+    for (int j = 0; j < kSteps; ++j) {
+      const Vec3 point(float(-half_width + (i + 0.5) * 2.0 * half_width / kSteps),
+                       float(-half_height + (j + 0.5) * 2.0 * half_height / kSteps), 0.0f);
+      const std::optional<glint::CameraConnection> c = connect(point);
+      REQUIRE(c.has_value());
+      sum += double(c->importance) * c->direction.z;  // cos at the plane, whose normal is +z
+    }
+  return sum * (2.0 * half_width / kSteps) * (2.0 * half_height / kSteps);
 }
 
 }  // namespace
@@ -190,24 +224,147 @@ TEST_CASE("camera: its importance integrates to the film's pixels", "[camera]") 
   // camera at distance 5), that is the integral of importance x cos x filter density per unit
   // area: summed over every pixel (each filter integrating to one over the film), the integral
   // of importance x cos over the part of the plane the film sees is the number of pixels.
-  glint::CameraDescription description;
-  description.position = {0.0f, 0.0f, 5.0f};
-  description.look_at = {0.0f, 0.0f, 0.0f};
-  description.fov_degrees = 40.0f;
+  const glint::CameraDescription description = axis_camera(5.0f, 40.0f, 0.0f);
   const int width = 30, height = 20;
   const glint::Camera camera(description, width, height);
-  const double half_height = 5.0 * std::tan(20.0 * M_PI / 180.0);
-  const double half_width = half_height * width / height;
-  constexpr int kSteps = 600;
-  double sum = 0.0;
-  for (int i = 0; i < kSteps; ++i)
-    for (int j = 0; j < kSteps; ++j) {
-      const Vec3 point(float(-half_width + (i + 0.5) * 2.0 * half_width / kSteps),
-                       float(-half_height + (j + 0.5) * 2.0 * half_height / kSteps), 0.0f);
-      const std::optional<glint::CameraConnection> c = camera.connect(point);
-      REQUIRE(c.has_value());
-      sum += double(c->importance) * c->direction.z;  // cos at the plane, whose normal is +z
-    }
-  sum *= (2.0 * half_width / kSteps) * (2.0 * half_height / kSteps);
+  const double sum = importance_over_window(
+      description, width, height, [&](const Vec3& point) { return camera.connect(point); });
   CHECK(sum == Approx(double(width) * height).epsilon(1e-4));
+}
+
+namespace {
+
+/// Hands out one fixed 2d value: a lens point chosen by the test.
+struct FixedDraw {
+  Vec2 u;
+  Vec2 next_2d() { return u; }
+};
+
+/// The lens samples the thin-lens tests use: the centre, the rim and points between.
+const Vec2 kLensSamples[] = {Vec2(0.0f, 0.0f), Vec2(0.999f, 0.1f), Vec2(0.25f, 0.6f),
+                             Vec2(0.7f, 0.85f), Vec2(0.5f, 0.35f)};
+
+glint::CameraDescription lens_camera() {
+  glint::CameraDescription description = oblique_camera();
+  description.aperture = 0.4f;
+  description.focus_distance = 6.0f;
+  return description;
+}
+
+}  // namespace
+
+TEST_CASE("camera: a thin lens's rays leave the lens and meet on the plane in focus", "[camera]") {
+  const glint::CameraDescription description = lens_camera();
+  const glint::Camera camera(description, 64, 48);
+  REQUIRE(camera.has_lens());
+  const Vec3 forward = glm::normalize(description.look_at - description.position);
+  for (const Vec2 film : {Vec2(32.0f, 24.0f), Vec2(3.5f, 40.25f), Vec2(60.0f, 2.0f)}) {
+    // Where the central ray (the pinhole's) meets the plane in focus.
+    const glint::Ray central = camera.ray_through(film);
+    const Vec3 focal = central.at(6.0f / glm::dot(central.direction, forward));
+    for (const Vec2 u : kLensSamples) {
+      FixedDraw draw{u};
+      const glint::Ray ray = camera.sample_ray(film, draw);
+      const Vec3 from_centre = ray.origin - description.position;
+      CHECK(std::abs(glm::dot(from_centre, forward)) < 1e-6f);  // on the lens, in its plane
+      CHECK(glm::length(from_centre) <= 0.4f * 1.0001f);
+      CHECK(glm::length(ray.direction) == Approx(1.0).epsilon(1e-6));
+      const Vec3 on_focus_plane = ray.at(6.0f / glm::dot(ray.direction, forward));
+      CHECK(glm::length(on_focus_plane - focal) < 2e-5f);
+    }
+  }
+  // The lens is sampled uniformly: the rim at u.x -> 1, the centre at u.x = 0.
+  FixedDraw rim{Vec2(0.9999999f, 0.3f)};
+  CHECK(glm::length(camera.sample_ray(Vec2(10.0f, 10.0f), rim).origin - description.position) ==
+        Approx(0.4).epsilon(1e-5));
+}
+
+TEST_CASE("camera: a thin lens connects a point back to the film and lens point of its ray",
+          "[camera]") {
+  glint::CameraDescription description = lens_camera();
+  description.near = 0.5f;
+  const glint::Camera camera(description, 64, 48);
+  for (const Vec2 film : {Vec2(0.5f, 0.5f), Vec2(31.7f, 20.2f), Vec2(63.9f, 47.1f)})
+    for (const Vec2 u : kLensSamples) {
+      FixedDraw draw{u};
+      const glint::Ray ray = camera.sample_ray(film, draw);
+      for (const float t : {1.0f, 6.0f, 300.0f}) {
+        FixedDraw again{u};
+        const std::optional<glint::CameraConnection> c = camera.connect(ray.at(t), again);
+        REQUIRE(c.has_value());
+        CHECK(c->film.x == Approx(film.x).margin(3e-3));
+        CHECK(c->film.y == Approx(film.y).margin(3e-3));
+        CHECK(glm::length(c->lens_point - ray.origin) < 1e-6f);
+        CHECK(c->distance == Approx(t).epsilon(1e-5));
+        CHECK(c->unclipped_distance == Approx(t - ray.t_min).epsilon(1e-5));
+        CHECK(glm::dot(c->direction, ray.direction) == Approx(-1.0).margin(1e-6));
+      }
+    }
+}
+
+TEST_CASE("camera: a point off the plane in focus spreads over the lens equation's circle",
+          "[camera]") {
+  // A point on the axis at depth d, seen through lens point rho (from the centre), lands where
+  // the ray from rho through it meets the plane in focus at depth f: rho (1 - f / d) from the
+  // axis, f p per pixel there (p: a pixel's size at depth one). So the rim of an aperture of
+  // radius r draws a circle of radius r |1 - f / d| / (f p) pixels about the image centre, and a
+  // point on the plane in focus stays a point.
+  glint::CameraDescription description = axis_camera(10.0f, 30.0f, 0.25f);
+  description.focus_distance = 8.0f;
+  const int width = 200, height = 100;
+  const glint::Camera camera(description, width, height);
+  const double p = 2.0 * std::tan(15.0 * M_PI / 180.0) / height;
+  for (const double d : {2.0, 4.0, 8.0, 16.0, 50.0}) {
+    const double expected = 0.25 * std::abs(1.0 - 8.0 / d) / (8.0 * p);
+    for (const float angle : {0.0f, 0.3f, 0.55f, 0.9f}) {
+      FixedDraw rim{Vec2(0.99999994f, angle)};
+      const std::optional<glint::CameraConnection> c =
+          camera.connect(Vec3(0.0f, 0.0f, float(10.0 - d)), rim);
+      REQUIRE(c.has_value());
+      const double radius =
+          std::hypot(double(c->film.x) - width / 2.0, double(c->film.y) - height / 2.0);
+      INFO("depth " << d << ", angle " << angle);
+      CHECK(radius == Approx(expected).margin(2e-3));
+    }
+  }
+}
+
+TEST_CASE("camera: a thin lens's importance integrates to the film's pixels from every lens point",
+          "[camera]") {
+  // As for the pinhole: the plane is the plane in focus, which every lens point sees through
+  // the same window, so the integral of importance x cos over the window is the number of
+  // pixels for each lens point drawn.
+  const glint::CameraDescription description = axis_camera(5.0f, 40.0f, 0.6f);
+  const int width = 30, height = 20;
+  const glint::Camera camera(description, width, height);
+  REQUIRE(camera.focus_distance() == 5.0f);  // look_at's distance, by default
+  for (const Vec2 u : kLensSamples) {
+    INFO("lens sample " << u.x << ", " << u.y);
+    const double sum = importance_over_window(description, width, height, [&](const Vec3& point) {
+      FixedDraw draw{u};
+      return camera.connect(point, draw);
+    });
+    CHECK(sum == Approx(double(width) * height).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("validate rejects a bad aperture or focus", "[camera][validate]") {
+  glint::SceneDescription scene;
+  scene.source = "cam.scene";
+  scene.camera.line = 3;
+  for (const float aperture :
+       {-0.1f, std::nanf(""), std::numeric_limits<float>::infinity(), 1e30f}) {
+    glint::SceneDescription s = scene;
+    s.camera.aperture = aperture;
+    CHECK_THROWS_AS(glint::validate(s), glint::SceneError);
+  }
+  for (const float focus : {-1.0f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
+    glint::SceneDescription s = scene;
+    s.camera.focus_distance = focus;
+    CHECK_THROWS_AS(glint::validate(s), glint::SceneError);
+  }
+  glint::SceneDescription s = scene;
+  s.camera.aperture = 0.5f;
+  s.camera.focus_distance = 12.0f;
+  CHECK_NOTHROW(glint::validate(s));
 }

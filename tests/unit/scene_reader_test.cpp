@@ -519,6 +519,15 @@ TEST_CASE("scene reader: degenerate cameras", "[scene_reader][errors]") {
   expect_error("camera fov=180\n", 1, "fov must be strictly between");
   expect_error("camera fov=-5\n", 1, "fov must be strictly between");
   expect_error("camera near=-1\n", 1, "camera near must be finite and non-negative");
+  expect_error("camera aperture=-0.5\n", 1, "camera aperture must be between 0 and ");
+  expect_error("camera aperture=1e30\n", 1, "camera aperture must be between 0 and ");
+  expect_error("camera focus=0\n", 1, "camera focus must be positive, got 0");
+  expect_error("camera focus=-3\n", 1, "camera focus must be positive, got -3");
+  expect_error("camera focus=1e30\n", 1, "camera focus must be positive and at most");
+  const glint::SceneDescription lens =
+      read_scene_text("camera position=0,0,10 look_at=0,0,0 aperture=0.5 focus=7.5\n");
+  CHECK(lens.camera.aperture == 0.5f);
+  CHECK(lens.camera.focus_distance == 7.5f);
   // Valid in double, but the float camera basis would be NaN.
   expect_error("camera position=3e38,0,0 look_at=-3e38,0,0\n", 1, "viewing basis");
   expect_error("camera up=0,1e-30,0\n", 1, "viewing basis");

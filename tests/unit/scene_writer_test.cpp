@@ -46,6 +46,8 @@ glint::SceneDescription every_field_scene() {
   scene.camera.up = Vec3(0.0f, 1.0f, 1e-3f);
   scene.camera.fov_degrees = 47.123456f;
   scene.camera.near = 0.25f;
+  scene.camera.aperture = 0.0625f;
+  scene.camera.focus_distance = 31.4159f;
   scene.antialias_sigma = 0.333333343f;
   scene.background = Color(0.01f, 0.02f, 0.03f);
   scene.medium_ior = 1.333f;
@@ -134,6 +136,8 @@ void require_same_scene(const glint::SceneDescription& a, const glint::SceneDesc
   require_same(a.camera.up, b.camera.up);
   REQUIRE(bits(a.camera.fov_degrees) == bits(b.camera.fov_degrees));
   REQUIRE(bits(a.camera.near) == bits(b.camera.near));
+  REQUIRE(bits(a.camera.aperture) == bits(b.camera.aperture));
+  REQUIRE(bits(a.camera.focus_distance) == bits(b.camera.focus_distance));
   REQUIRE(bits(a.antialias_sigma) == bits(b.antialias_sigma));
   require_same(a.background, b.background);
   REQUIRE(bits(a.medium_ior) == bits(b.medium_ior));

@@ -131,8 +131,9 @@ inline constexpr std::string_view kSphereKeys[] = {
 
 enum ImageKey : int { kWidth, kHeight, kSpp, kMaxDepthKey };
 inline constexpr std::string_view kImageKeys[] = {"width", "height", "spp", "max_depth"};
-enum CameraKey : int { kPosition, kLookAt, kUp, kFov, kNear };
-inline constexpr std::string_view kCameraKeys[] = {"position", "look_at", "up", "fov", "near"};
+enum CameraKey : int { kPosition, kLookAt, kUp, kFov, kNear, kAperture, kFocus };
+inline constexpr std::string_view kCameraKeys[] = {"position", "look_at",  "up",   "fov",
+                                                   "near",     "aperture", "focus"};
 enum LightKey : int { kLightPosition, kIntensity, kLightColor };
 inline constexpr std::string_view kLightKeys[] = {"position", "intensity", "color"};
 inline constexpr std::string_view kAntialiasKeys[] = {"sigma"};
@@ -422,6 +423,12 @@ class Parser {
     if (f.has(kUp)) camera.up = vec3("up", f[kUp]);
     if (f.has(kFov)) camera.fov_degrees = number("fov", f[kFov]);
     if (f.has(kNear)) camera.near = number("near", f[kNear]);
+    if (f.has(kAperture)) camera.aperture = number("aperture", f[kAperture]);
+    if (f.has(kFocus)) {
+      camera.focus_distance = number("focus", f[kFocus]);
+      if (!(camera.focus_distance > 0.0f))
+        fail("camera focus must be positive, got " + detail::format_number(camera.focus_distance));
+    }
     detail::check_camera(scene_);
   }
 

@@ -132,6 +132,8 @@ void emit_scene(const SceneDescription& scene, std::string& buffer, std::size_t 
   append_key(buffer, "up", camera.up);
   append_key(buffer, "fov", camera.fov_degrees);
   append_key(buffer, "near", camera.near);
+  if (camera.aperture > 0.0f) append_key(buffer, "aperture", camera.aperture);
+  if (camera.focus_distance > 0.0f) append_key(buffer, "focus", camera.focus_distance);
 
   buffer += "\nantialias";
   append_key(buffer, "sigma", scene.antialias_sigma);

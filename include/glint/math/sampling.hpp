@@ -87,6 +87,13 @@ inline F uniform_cone_pdf(F one_minus_cos_max) {
   return 1.0f / (2.0f * kPi * one_minus_cos_max);
 }
 
+/// Uniform on the unit disc (polar: radius sqrt(u.x), angle 2 pi u.y); pdf 1/pi.
+template <typename V2>
+inline V2 sample_uniform_disc(const V2& u) {
+  const Vec3For<FloatOf<V2>> point = detail::around_z(u.y, sqrt(u.x), splat<FloatOf<V2>>(0.0f));
+  return V2{point.x, point.y};
+}
+
 /// Two independent standard normal values (Box-Muller). u.x is mapped to (0, 1] so that the
 /// logarithm stays finite.
 template <typename V2>

@@ -159,11 +159,11 @@ class BidirectionalExecution {
           }
           Color sample;
           if constexpr (Merging) {
-            sample = merged_sample(camera_.ray_through(film), filter_density, camera_sampler,
-                                   light_sampler, state, splat, counters);
+            sample = merged_sample(camera_.sample_ray(film, camera_sampler), filter_density,
+                                   camera_sampler, light_sampler, state, splat, counters);
           } else {
-            sample = tracer_.sample(camera_.ray_through(film), filter_density, camera_sampler,
-                                    light_sampler, std::span<Vertex>(state.camera),
+            sample = tracer_.sample(camera_.sample_ray(film, camera_sampler), filter_density,
+                                    camera_sampler, light_sampler, std::span<Vertex>(state.camera),
                                     std::span<Vertex>(state.light), splat, counters);
           }
           if (std::isfinite(sample.x) && std::isfinite(sample.y) && std::isfinite(sample.z))

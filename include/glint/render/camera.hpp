@@ -1,4 +1,19 @@
 #pragma once
+// The camera: a pinhole, or a thin lens (an aperture of radius r focused at distance f) where the
+// scene gives an aperture. Every estimator asks it the same things: a ray through a film point
+// (from a point of the lens drawn from the sampler, with a lens), the density of a ray's
+// direction, and for light paths where a scene point lands on the film, with the camera's
+// importance there (connect).
+//
+// A thin lens is a pinhole at a lens point e drawn uniformly on the aperture, whose rays are
+// bent to pass through the plane in focus where the central ray does: film point x sees along
+// the ray from e through F(x), the central ray's point at depth f. So the density of a ray's
+// direction from e, for a film point of density one per pixel, is the pinhole's formula in that
+// direction (the film maps onto the plane in focus as it does through the centre), and the
+// importance of a connection from e, divided by the lens point's density 1 / (pi r^2), is again
+// the pinhole's formula from e: the lens's density cancels, and every strategy of a path draws
+// e alike, so the bidirectional estimators' weights need no term for it. With no aperture the
+// lens point is the centre, bit for bit the pinhole's arithmetic, and no value is drawn for it.
 
 #include <cmath>
 #include <optional>
@@ -6,6 +21,7 @@
 #include "glint/geometry/ray.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/math/elementary_functions.hpp"
+#include "glint/math/sampling.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/scene/scene_description.hpp"
 
@@ -25,16 +41,23 @@ struct CameraConnection {
   /// plane at distance 1 and theta the angle between the ray and the viewing direction. A pixel's
   /// value being the mean radiance over its filter's offsets (in pixels), light leaving the
   /// point with radiance L adds L |cos| importance density(film - centre) to it per unit area.
+  /// With a lens, this is per lens point drawn (the lens's density divided out).
   float importance;
+  /// The point of the lens the connection passes through: the camera's position for a pinhole.
+  Vec3 lens_point;
 };
 
-/// A pinhole camera. Film coordinates are in pixels: (0,0) is the top-left corner of the
-/// image, (width, height) the bottom-right one, so pixel (x, y) has its centre at
-/// (x + 0.5, y + 0.5).
+/// The camera. Film coordinates are in pixels: (0,0) is the top-left corner of the image,
+/// (width, height) the bottom-right one, so pixel (x, y) has its centre at (x + 0.5, y + 0.5).
 class Camera {
  public:
   Camera(const CameraDescription& description, int width, int height)
-      : position_(description.position), near_(description.near) {
+      : position_(description.position),
+        near_(description.near),
+        lens_radius_(description.aperture),
+        focus_(description.focus_distance > 0.0f
+                   ? description.focus_distance
+                   : glm::length(description.look_at - description.position)) {
     forward_ = glm::normalize(description.look_at - description.position);
     right_ = glm::normalize(glm::cross(forward_, description.up));
     up_ = glm::cross(right_, forward_);
@@ -47,10 +70,28 @@ class Camera {
     half_height_ = 0.5f * static_cast<float>(height);
   }
 
+  /// Whether the camera has an aperture: its rays leave from points of the lens, drawn from the
+  /// sampler (two values per ray and per connection).
+  bool has_lens() const { return lens_radius_ > 0.0f; }
+  float lens_radius() const { return lens_radius_; }
+  /// The distance along the viewing direction of the plane in focus.
+  float focus_distance() const { return focus_; }
+
+  /// The central ray through film point `film`: the pinhole's, or a lens's through its centre.
   Ray ray_through(Vec2 film) const {
     Ray ray;
     ray.origin = position_;
     rays_through(film, ray.direction, ray.t_min);
+    return ray;
+  }
+
+  /// A ray through film point `film`: with a lens, from the lens point of sample `sampler`'s
+  /// next two values; without one, the central ray, drawing nothing.
+  template <typename Sampler>
+  Ray sample_ray(Vec2 film, Sampler& sampler) const {
+    if (!has_lens()) return ray_through(film);
+    Ray ray;
+    rays_through(film, sampler.next_2d(), ray.origin, ray.direction, ray.t_min);
     return ray;
   }
 
@@ -68,6 +109,26 @@ class Camera {
     t_min = near_ / dot(direction, forward);
   }
 
+  /// The rays through a Float's lanes of film points from the lens points of samples `lens` (in
+  /// [0,1)^2, uniform on the aperture), the same bits in every lane: their origins on the lens,
+  /// directions and t_min. Requires has_lens().
+  template <typename V2>
+  void rays_through(const V2& film, const V2& lens, Vec3For<FloatOf<V2>>& origin,
+                    Vec3For<FloatOf<V2>>& direction, FloatOf<V2>& t_min) const {
+    using V3 = Vec3For<FloatOf<V2>>;
+    rays_through(film, direction, t_min);
+    const V3 forward = splat_vector<V3>(forward_);
+    // The central ray's point on the plane in focus, from the centre.
+    const V3 focal = (focus_ / dot(direction, forward)) * direction;
+    const V2 disc = sample_uniform_disc(lens);
+    const V3 from_centre = (lens_radius_ * disc.x) * splat_vector<V3>(right_) +
+                           (lens_radius_ * disc.y) * splat_vector<V3>(up_);
+    origin = splat_vector<V3>(position_) + from_centre;
+    direction = normalize(focal - from_centre);
+    // The lens is in the plane of the centre, perpendicular to the viewing direction.
+    t_min = near_ / dot(direction, forward);
+  }
+
   const Vec3& position() const { return position_; }
   /// The size of a pixel on the plane at distance one in the viewing direction.
   float pixel_size() const { return pixel_scale_; }
@@ -81,24 +142,41 @@ class Camera {
     return 1.0f / solid_angle_per_pixel(cosine);
   }
 
-  /// Where the camera sees `point`: none when it is behind the camera or not beyond the near
-  /// plane (ray_through's rays start there), the film position otherwise, on the film or not.
+  /// Where the camera sees `point` through the centre of its lens: none when it is behind the
+  /// camera or not beyond the near plane (the camera's rays start there), the film position
+  /// otherwise, on the film or not.
   std::optional<CameraConnection> connect(const Vec3& point) const {
-    const Vec3 offset = point - position_;
+    return connect_through(point, Vec2(0.0f));
+  }
+
+  /// connect, through the lens point of sample `sampler`'s next two values where the camera has
+  /// a lens (drawing nothing otherwise).
+  template <typename Sampler>
+  std::optional<CameraConnection> connect(const Vec3& point, Sampler& sampler) const {
+    if (!has_lens()) return connect(point);
+    return connect_through(point, lens_radius_ * sample_uniform_disc(sampler.next_2d()));
+  }
+
+ private:
+  /// connect through the lens point `disc` (along right and up) from the centre.
+  std::optional<CameraConnection> connect_through(const Vec3& point, Vec2 disc) const {
+    const Vec3 lens_point = position_ + (disc.x * right_ + disc.y * up_);
+    const Vec3 offset = point - lens_point;
     const float depth = glm::dot(offset, forward_);
     if (!(depth > near_) || !(depth > 0.0f)) return std::nullopt;
     const float distance2 = glm::dot(offset, offset);
     const float distance = std::sqrt(distance2);
     const float cosine = depth / distance;
-    const float sx = glm::dot(offset, right_) / depth;
-    const float sy = glm::dot(offset, up_) / depth;
+    // Where the ray from the lens point through `point` meets the plane in focus, seen from the
+    // centre (at depth one): the lens point's offset over f, plus the point's direction's.
+    const float sx = disc.x / focus_ + glm::dot(offset, right_) / depth;
+    const float sy = disc.y / focus_ + glm::dot(offset, up_) / depth;
     const Vec2 film(sx / pixel_scale_ + half_width_, half_height_ - sy / pixel_scale_);
     const float importance = 1.0f / (solid_angle_per_pixel(cosine) * distance2);
-    return CameraConnection{film, -offset / distance, distance, distance - near_ / cosine,
-                            importance};
+    return CameraConnection{film,       -offset / distance, distance, distance - near_ / cosine,
+                            importance, lens_point};
   }
 
- private:
   /// The solid angle of the rays through one pixel's area of film at angle theta to the viewing
   /// direction (cos(theta) = `cosine`): p^2 cos^3(theta).
   float solid_angle_per_pixel(float cosine) const {
@@ -108,6 +186,8 @@ class Camera {
   Vec3 position_;
   Vec3 forward_{}, right_{}, up_{};
   float near_;
+  float lens_radius_;
+  float focus_;
   float pixel_scale_ = 0.0f;
   float half_width_ = 0.0f, half_height_ = 0.0f;
 };

@@ -94,7 +94,7 @@ class ScalarExecution {
       Vec2 film(float(x) + 0.5f, float(y) + 0.5f);
       if constexpr (C::antialiasing::enabled)
         film += C::antialiasing::offset(sampler.next_2d(), settings.antialias_sigma);
-      const Color sample = tracer.radiance(camera.ray_through(film), sampler, counters);
+      const Color sample = tracer.radiance(camera.sample_ray(film, sampler), sampler, counters);
       if (std::isfinite(sample.x) && std::isfinite(sample.y) && std::isfinite(sample.z))
         sum += ColorSum(sample);
       else

@@ -23,6 +23,9 @@ struct CameraDescription {
   Vec3 up{0.0f, 1.0f, 0.0f};
   float fov_degrees = 60.0f;  ///< vertical field of view
   float near = 0.0f;          ///< nothing closer than this along the viewing direction is seen
+  float aperture = 0.0f;      ///< the lens's radius; 0: a pinhole
+  /// The distance along the viewing direction of the plane in focus; 0: that of look_at.
+  float focus_distance = 0.0f;
   int line = 0;
 };
 

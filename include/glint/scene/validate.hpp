@@ -117,6 +117,15 @@ inline void check_camera(const SceneDescription& scene) {
                  format_number(camera.fov_degrees)}));
   if (!(camera.near >= 0.0f) || !std::isfinite(camera.near))
     fail("camera near must be finite and non-negative");
+  // The lens's rays leave from points up to `aperture` from the position: coordinates too.
+  if (!(camera.aperture >= 0.0f && camera.aperture <= limits::max_coordinate))
+    fail(concat({"camera aperture must be between 0 and ", format_number(limits::max_coordinate),
+                 ", got ", format_number(camera.aperture)}));
+  // 0 stands for the distance to look_at (a file cannot write it: the reader refuses it).
+  if (!(camera.focus_distance >= 0.0f && camera.focus_distance <= limits::max_coordinate))
+    fail(
+        concat({"camera focus must be positive and at most ", format_number(limits::max_coordinate),
+                ", got ", format_number(camera.focus_distance)}));
 }
 
 inline void check_antialias(const SceneDescription& scene) {

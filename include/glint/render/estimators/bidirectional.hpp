@@ -444,7 +444,8 @@ class BidirectionalPathTracer {
         if (s == 0) {
           if (t >= 2) radiance += emitted(z.first(t), rules);
         } else if (t == 1) {
-          if (light_tracing_counts_) join_camera(y.first(s), rules, splat, counters);
+          if (light_tracing_counts_)
+            join_camera(y.first(s), rules, camera_sampler, splat, counters);
         } else if (s == 1) {
           radiance += join_light(z.first(t), rules, camera_sampler, counters);
         } else {
@@ -536,7 +537,7 @@ class BidirectionalPathTracer {
     Vertex& eye = z[0];
     eye = Vertex{};
     eye.kind = Kind::camera;
-    eye.point = camera_.position();
+    eye.point = ray.origin;  // the camera's position, or the lens point the ray leaves
     eye.beta = Color(1.0f);
     // The density of the ray's direction, per unit solid angle, as a strategy that splats would
     // have to match it: the filter's density over the light paths per sample.
@@ -709,15 +710,16 @@ class BidirectionalPathTracer {
     return light;
   }
 
-  /// Strategy t = 1: light vertex y[s - 1] joined to the camera.
+  /// Strategy t = 1: light vertex y[s - 1] joined to the camera (through a lens point drawn
+  /// from `sampler`, where the camera has a lens).
   template <typename Splat>
-  void join_camera(std::span<const Vertex> y, const StrategyRules& rules, Splat& splat,
-                   TraceCounters& counters) const {
+  void join_camera(std::span<const Vertex> y, const StrategyRules& rules, SamplerType& sampler,
+                   Splat& splat, TraceCounters& counters) const {
     const std::size_t s = y.size();
     const Vertex& qs = y[s - 1];
-    if (!qs.joinable()) return;
-    const std::optional<CameraConnection> to_camera = camera_.connect(qs.point);
-    if (!to_camera) return;
+    // The draw comes before the test of the vertex, so that every vertex draws the same.
+    const std::optional<CameraConnection> to_camera = camera_.connect(qs.point, sampler);
+    if (!qs.joinable() || !to_camera) return;
     Color value;
     if (qs.kind == Kind::area_light)
       value = qs.beta * std::fabs(glm::dot(to_camera->direction, qs.normal));
@@ -735,7 +737,7 @@ class BidirectionalPathTracer {
     // for qs is h x solid_angle_density x |cos at qs| / distance^2 / pixels.
     Vertex eye{};
     eye.kind = Kind::camera;
-    eye.point = camera_.position();
+    eye.point = to_camera->lens_point;
     const float camera_pdf =
         detail::area_density(camera_.solid_angle_density(-to_camera->direction) / pixels_, eye, qs);
     // 1 / w - 1 with the camera's density at h = 1: every term holds h^2 once.

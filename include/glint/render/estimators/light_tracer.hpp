@@ -56,7 +56,7 @@ class LightTracer {
   /// connection brings, per unit of the pixel filter's density at `film` minus a pixel's centre.
   /// Draws, in order: the light (1d), the point on it (2d), the direction (2d); then at each
   /// vertex roulette where C::path_termination plays (1d) and the direction (as the Bsdf's
-  /// sample draws).
+  /// sample draws); with a lens, each connection to the camera first draws its lens point (2d).
   template <typename Splat>
   void trace(SamplerType& sampler, Splat&& splat, TraceCounters& counters) const {
     if (selection_.empty()) return;
@@ -77,7 +77,7 @@ class LightTracer {
           [&](const Vec3& to_camera) {
             return at_light * std::fabs(glm::dot(to_camera, emitted.normal));
           },
-          splat, counters);
+          sampler, splat, counters);
 
     Ray ray = emitted.ray;
     Color weight = emitted.ray_weight(choice.probability);
@@ -97,7 +97,7 @@ class LightTracer {
             [&](const Vec3& to_camera) {
               return weight * bsdf.template evaluate<Transport::importance>(to_camera);
             },
-            splat, counters);
+            sampler, splat, counters);
       if (vertex == most_vertices || !bsdf.scatters()) return;
       // Roulette on the weight relative to the light's, which is what a camera path's
       // throughput of one means here.
@@ -121,8 +121,8 @@ class LightTracer {
   /// times the camera's importance. A connection that brings nothing traces no ray.
   template <typename Light, typename Splat>
   void connect(const Vec3& point, std::uint32_t sphere, const Vec3& normal, Light&& light,
-               Splat& splat, TraceCounters& counters) const {
-    const std::optional<CameraConnection> to_camera = camera_.connect(point);
+               SamplerType& sampler, Splat& splat, TraceCounters& counters) const {
+    const std::optional<CameraConnection> to_camera = camera_.connect(point, sampler);
     if (!to_camera) return;
     const Color value = light(to_camera->direction);
     if (value == Color(0.0f)) return;

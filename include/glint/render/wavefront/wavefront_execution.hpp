@@ -425,8 +425,15 @@ class WavefrontExecution {
       film.y = film.y + offset.y;
     }
     PathLanes<Lanes> path;
-    path.ray.origin = splat_vector<Vec3For<Lanes>>(camera_.position());
-    camera_.rays_through(film, path.ray.direction, path.ray.t_min);
+    if (camera_.has_lens()) {
+      // The lens point after the filter's offset, as ScalarExecution draws them.
+      auto&& draws = draws_of(state, base);
+      camera_.rays_through(film, next_2d(draws, lanes), path.ray.origin, path.ray.direction,
+                           path.ray.t_min);
+    } else {
+      path.ray.origin = splat_vector<Vec3For<Lanes>>(camera_.position());
+      camera_.rays_through(film, path.ray.direction, path.ray.t_min);
+    }
     path.ray.t_max = splat<Lanes>(kInfinity);
     path.ray.origin_sphere = splat<UIntFor<Lanes>>(kNoSphere);
     path.ray.heads_into_origin_sphere = mask_of<LaneMaskType>(false);
