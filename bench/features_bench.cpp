@@ -31,7 +31,9 @@
 #include "glint/policy/light_sampling.hpp"
 #include "glint/policy/sampler.hpp"
 #include "glint/policy/sphere_shading.hpp"
+#include "glint/render/estimators/bidirectional.hpp"
 #include "glint/render/lights/sphere_light.hpp"
+#include "glint/render/merge_grid.hpp"
 #include "glint/scene/emitters.hpp"
 #include "glint/scene/inclusion_tree.hpp"
 #include "glint/scene/scene.hpp"
@@ -779,6 +781,44 @@ BENCHMARK(BM_BvhBatch)
     ->ArgNames({"spheres", "random", "packet", "occluded"})
     ->ArgsProduct({{10000, 100000}, {kCameraRays, kRandomRays}, {0, 1}, {0, 1}});
 #endif
+
+// ---------------------------------------------------------------------------------------------
+// Vertex merging's grid
+
+/// Indexing a pass's merge candidates (MergeGrid::build_grid: gathering the chunks, then the
+/// in-place sort by bucket) for N candidates on a floor and a ball, three per light path, about
+/// one per bucket. Unlike the rest of this file, memory-bound: N x 44 bytes, sorted in place.
+void BM_MergeGridBuild(benchmark::State& state) {
+  const std::size_t paths = std::size_t(state.range(0)) / 3;
+  glint::MergeGrid<glint::MergeCandidate> grid(paths);
+  for (auto _ : state) {
+    state.PauseTiming();
+    for (std::size_t chunk = 0; chunk < grid.chunk_count(); ++chunk)
+      grid.fill_chunk(chunk, [](std::size_t path, auto& candidates) {
+        glint::Pcg32 rng(path, 7);
+        for (int k = 0; k < 3; ++k) {
+          glint::MergeCandidate candidate{};
+          const float u = rng.next_float(), v = rng.next_float();
+          if (k == 0) {
+            candidate.point = Vec3(40.0f * u - 20.0f, -10.0f, 40.0f * v - 20.0f);
+          } else {
+            const float z = 2.0f * u - 1.0f, r = std::sqrt(1.0f - z * z), a = 6.2831853f * v;
+            candidate.point = 10.0f * Vec3(r * std::cos(a), r * std::sin(a), z);
+          }
+          candidates.push_back(candidate);
+        }
+      });
+    state.ResumeTiming();
+    grid.build_grid(0.02f);
+    benchmark::DoNotOptimize(grid.candidate_count());
+  }
+  state.SetItemsProcessed(std::int64_t(3 * paths) * state.iterations());
+}
+BENCHMARK(BM_MergeGridBuild)
+    ->ArgName("candidates")
+    ->Arg(1 << 16)
+    ->Arg(3 << 20)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -26,6 +26,8 @@ struct PageAllocator {
 
   /// Allocations from this size on are mapped.
   static constexpr std::size_t kMappedBytes = std::size_t(1) << 18;
+  /// Mappings from this size on ask for large pages.
+  static constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;
 
   T* allocate(std::size_t n) {
     if (n > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
@@ -34,6 +36,12 @@ struct PageAllocator {
       void* p = ::mmap(nullptr, n * sizeof(T), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
                        -1, 0);
       if (p == MAP_FAILED) throw std::bad_alloc();
+#if defined(MADV_HUGEPAGE)
+      // Large pages where the system offers them: a grid of candidates is read at random, and
+      // a mapping of 2 MiB pages takes 512 times fewer page faults and TLB entries. A hint
+      // only: nothing changes where it is refused.
+      if (n * sizeof(T) >= kHugePageBytes) ::madvise(p, n * sizeof(T), MADV_HUGEPAGE);
+#endif
       return static_cast<T*>(p);
     }
 #endif

@@ -58,7 +58,7 @@ class MergeGrid {
   void clear() {
     if (sorted_.capacity() * sizeof(Candidate) > kKeptBytes) {
       Candidates().swap(sorted_);
-      std::vector<std::uint32_t>().swap(bucket_starts_);
+      BucketStarts().swap(bucket_starts_);
     } else {
       sorted_.clear();
     }
@@ -83,8 +83,10 @@ class MergeGrid {
 
   /// Indexes the chunks' merge candidates for queries of radius `radius`: moves them into one
   /// array in chunk order, releasing each chunk as it goes, then sorts that array by bucket in
-  /// place, bucket by bucket, each candidate swapped straight to the next free place of its own
-  /// bucket (an American flag sort).
+  /// place (an American flag sort: each candidate swapped straight to the next free place of its
+  /// own range), in two levels so that the swaps stay near each other: first into 256 parts of
+  /// consecutive buckets (256 places written in order, through the cache), then each part,
+  /// small enough to stay in the cache, into its buckets.
   void build_grid(float radius) {
     radius_ = radius;
     inverse_cell_ = 1.0 / (2.0 * double(radius));
@@ -107,16 +109,19 @@ class MergeGrid {
       ++bucket_starts_[bucket_of(candidate) + 1];
     for (std::size_t b = 1; b < bucket_starts_.size(); ++b)
       bucket_starts_[b] += bucket_starts_[b - 1];
-    std::vector<std::uint32_t> next(bucket_starts_.begin(), bucket_starts_.end() - 1);
-    for (std::size_t b = 0; b < buckets; ++b) {
-      const std::uint32_t end = bucket_starts_[b + 1];
-      while (next[b] < end) {
-        const std::size_t home = bucket_of(sorted_[next[b]]);
-        if (home == b)
-          ++next[b];
-        else
-          std::swap(sorted_[next[b]], sorted_[next[home]++]);
-      }
+    // Parts of 2^shift consecutive buckets: 256 of them, or one bucket each in a smaller grid.
+    const int bits = std::countr_zero(buckets);
+    const int shift = std::max(0, bits - kPartBits);
+    const std::size_t parts = buckets >> shift;
+    sort_into(
+        parts, [&](std::size_t part) { return bucket_starts_[part << shift]; },
+        [&](const Candidate& c) { return bucket_of(c) >> shift; });
+    if (shift == 0) return;
+    for (std::size_t part = 0; part < parts; ++part) {
+      const std::size_t first = part << shift;
+      sort_into(
+          std::size_t(1) << shift, [&](std::size_t b) { return bucket_starts_[first + b]; },
+          [&](const Candidate& c) { return bucket_of(c) - first; });
     }
   }
 
@@ -157,6 +162,29 @@ class MergeGrid {
     return bucket(cell(candidate.point, 0.0));
   }
 
+  /// The parts of the first level of build_grid's sort: 2^kPartBits.
+  static constexpr int kPartBits = 8;
+
+  /// Sorts the candidates from start(0) to start(ranges) in place into `ranges` ranges, range r
+  /// being [start(r), start(r + 1)) and holding the candidates c with range(c) == r (each one's
+  /// place counted beforehand).
+  template <typename Start, typename Range>
+  void sort_into(std::size_t ranges, const Start& start, const Range& range) {
+    next_.resize(ranges);
+    for (std::size_t r = 0; r < ranges; ++r)
+      next_[r] = start(r);
+    for (std::size_t r = 0; r < ranges; ++r) {
+      const std::uint32_t end = start(r + 1);
+      while (next_[r] < end) {
+        const std::size_t home = range(sorted_[next_[r]]);
+        if (home == r)
+          ++next_[r];
+        else
+          std::swap(sorted_[next_[r]], sorted_[next_[home]++]);
+      }
+    }
+  }
+
   std::size_t bucket(const std::array<std::int64_t, 3>& c) const {
     const std::uint64_t h = std::uint64_t(c[0]) * 0x9e3779b97f4a7c15ull ^
                             std::uint64_t(c[1]) * 0xc2b2ae3d27d4eb4full ^
@@ -171,7 +199,10 @@ class MergeGrid {
   double inverse_cell_ = 0.0;
   std::size_t mask_ = 0;
   Candidates sorted_;
-  std::vector<std::uint32_t> bucket_starts_;
+  /// Where each bucket begins in sorted_, read at random by every query as sorted_ is.
+  using BucketStarts = std::vector<std::uint32_t, detail::PageAllocator<std::uint32_t>>;
+  BucketStarts bucket_starts_;
+  std::vector<std::uint32_t> next_;  ///< build_grid's next free place of each range
 };
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE
