@@ -3,6 +3,7 @@
 // variant but the three built on `fast` changes exactly one policy from it (an ablation), so
 // comparing it with `report` measures that one feature. `fast` combines the policies that give
 // the best image per second; `fast_no_emitter_sampling` takes one of them away again,
+// `fast_emitters_by_power` chooses light samples' emitters as a room of many lamps should not,
 // `light_tracing` replaces its estimator (camera paths) by paths from the lights,
 // `bidirectional` by both, joined, and `vcm` by both, joined and merged.
 //
@@ -46,7 +47,8 @@ struct fast
              CosineHemisphere, RussianRoulette, EmitterSampling<PowerHeuristic>> {
   static constexpr VariantInfo info{"fast",
                                     "Sobol' for the first 6 requests, one lobe per bounce, cosine "
-                                    "bounces, Russian roulette, emitter sampling with MIS",
+                                    "bounces, Russian roulette, emitter sampling with MIS, "
+                                    "emitters chosen by their light at the point",
                                     kSameImage};
 };
 
@@ -93,10 +95,18 @@ struct stratified_sampler : report::with_sampler<StratifiedSampler> {
 struct sobol_sampler : report::with_sampler<SobolSampler> {
   static constexpr VariantInfo info{"sobol_sampler", "Owen-scrambled Sobol' samples", kSameImage};
 };
-/// The one ablation of `fast`: what light sampling buys where the best other policies are on.
+/// The ablations of `fast`: what light sampling buys where the best other policies are on, and
+/// what choosing the emitter by its light at the point buys over choosing it by power.
 struct fast_no_emitter_sampling : fast::with_light_sampling<PointLightsOnly> {
   static constexpr VariantInfo info{
       "fast_no_emitter_sampling", "`fast` with emissive spheres found by bounces only", kSameImage};
+};
+struct fast_emitters_by_power
+    : fast::with_light_sampling<EmitterSampling<PowerHeuristic, EmitterChoiceByPower>> {
+  static constexpr VariantInfo info{
+      "fast_emitters_by_power",
+      "`fast` with each light sample's emitter chosen by power, not by its light at the point",
+      kSameImage};
 };
 /// The estimator that finds a point light's light through glass: `fast`'s policies, followed
 /// from the lights instead of from the camera. It sees no mirror or glass from the camera and
@@ -128,15 +138,18 @@ struct vcm : fast::with_estimator<VertexConnectionMerging> {
 };
 struct emitter_sampling : report::with_light_sampling<EmitterSampling<PowerHeuristic>> {
   static constexpr VariantInfo info{
-      "emitter_sampling", "emissive spheres sampled at diffuse hits, MIS with the power heuristic",
+      "emitter_sampling",
+      "emissive spheres sampled at diffuse hits (each chosen by its light there), MIS with the "
+      "power heuristic",
       kSameImage};
 };
 
 /// Every named variant, `report` first: the order of every table.
-using all = std::tuple<report, fast, no_fresnel, schlick_fresnel, no_antialiasing, box_antialiasing,
-                       tent_antialiasing, cosine_hemisphere, stochastic_material, russian_roulette,
-                       uniform_shading, stratified_sampler, sobol_sampler, emitter_sampling,
-                       fast_no_emitter_sampling, light_tracing, bidirectional, vcm>;
+using all =
+    std::tuple<report, fast, no_fresnel, schlick_fresnel, no_antialiasing, box_antialiasing,
+               tent_antialiasing, cosine_hemisphere, stochastic_material, russian_roulette,
+               uniform_shading, stratified_sampler, sobol_sampler, emitter_sampling,
+               fast_no_emitter_sampling, fast_emitters_by_power, light_tracing, bidirectional, vcm>;
 
 /// The variant glint-render renders with where nothing is asked for and the path tracer sees all
 /// the scene's light (render/path_tracing_blind_spot.hpp), and glint-render-mpi's.

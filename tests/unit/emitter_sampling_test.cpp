@@ -626,7 +626,7 @@ TEST_CASE("emitter sampling: power heuristic: weights of (a, b) and (b, a) sum t
 TEST_CASE(
     "emitter sampling: EmitterSamplingOnly: light samples weigh one, bounces onto emitters zero",
     "[emitters]") {
-  using L = glint::EmitterSamplingOnly;
+  using L = glint::EmitterSamplingOnly<>;
   STATIC_REQUIRE(L::samples_emitters);
   STATIC_REQUIRE_FALSE(glint::PointLightsOnly::samples_emitters);
   for (const auto& [a, b] : {std::pair{0.1f, 10.0f}, {10.0f, 0.1f}, {1.0f, 0.0f}, {0.0f, 1.0f}}) {

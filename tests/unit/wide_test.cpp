@@ -277,7 +277,7 @@ TEMPLATE_TEST_CASE(
 }
 
 TEMPLATE_TEST_CASE("wide: MIS weights give the same bits at every width, at every edge",
-                   "[wide][unit]", glint::PointLightsOnly, glint::EmitterSamplingOnly,
+                   "[wide][unit]", glint::PointLightsOnly, glint::EmitterSamplingOnly<>,
                    glint::EmitterSampling<glint::BalanceHeuristic>,
                    glint::EmitterSampling<glint::PowerHeuristic>) {
   check_same_bits_at_every_width(edge_pairs(), [](auto pdf, auto other) {

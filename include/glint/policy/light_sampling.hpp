@@ -2,8 +2,9 @@
 // Light sampling policies: how a path finds the light of emissive spheres. Point lights are
 // always gathered directly at diffuse hits (they cannot be hit by a bounce); these policies
 // decide whether emissive spheres are also sampled there (next-event estimation) and, if so,
-// how a light sample and a bounce that lands on the same emitter share the work (multiple
-// importance sampling, Veach 1997, chapter 9).
+// which emitter a light sample goes to (policy/emitter_choice.hpp) and how a light sample and a
+// bounce that lands on the same emitter share the work (multiple importance sampling, Veach
+// 1997, chapter 9).
 //
 // Both weights are functions of two densities per unit solid angle at the shading point: that
 // of the strategy that made the sample, and that of the other strategy for the same direction.
@@ -14,6 +15,7 @@
 #include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/policy/concepts.hpp"
+#include "glint/policy/emitter_choice.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
@@ -69,10 +71,12 @@ struct PowerHeuristic {
 /// bounce may follow, one emissive sphere is chosen and a direction towards it sampled and
 /// tested with a shadow ray; a bounce that lands on an emitter is weighted against the density
 /// with which light sampling would have chosen that direction. Delta lobes (mirror, refraction)
-/// have no density to compare, so light reaching a path through them keeps weight one.
-template <MisHeuristic Heuristic>
+/// have no density to compare, so light reaching a path through them keeps weight one. The
+/// emitter is chosen by `Choice`; its probability is part of the light sample's density.
+template <MisHeuristic Heuristic, EmitterChoice Choice = EmitterChoiceByContribution>
 struct EmitterSampling {
   using heuristic = Heuristic;
+  using emitter_choice = Choice;
   static constexpr bool samples_emitters = true;
   /// Where the heuristic has the width's form (a user's may be written for one path only).
   template <FloatType F>
@@ -90,7 +94,9 @@ struct EmitterSampling {
 /// Next-event estimation alone: emitters are reached only by light samples, and a bounce that
 /// lands on one from a diffuse hit counts nothing. Noisier than MIS where the lamp is large
 /// or close; kept as the reference strategy the tests compare the others with.
+template <EmitterChoice Choice = EmitterChoiceByContribution>
 struct EmitterSamplingOnly {
+  using emitter_choice = Choice;
   static constexpr bool samples_emitters = true;
   template <FloatType F>
   static F light_weight(F, F) {
@@ -105,6 +111,7 @@ struct EmitterSamplingOnly {
 static_assert(MisHeuristic<BalanceHeuristic> && MisHeuristic<PowerHeuristic>);
 static_assert(LightSampling<PointLightsOnly> && LightSampling<EmitterSampling<PowerHeuristic>> &&
               LightSampling<EmitterSampling<BalanceHeuristic>> &&
-              LightSampling<EmitterSamplingOnly>);
+              LightSampling<EmitterSampling<PowerHeuristic, EmitterChoiceByPower>> &&
+              LightSampling<EmitterSamplingOnly<>>);
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -1,13 +1,10 @@
 #pragma once
-// The emissive spheres of a scene and the choice of one per light sample: a table of the
-// spheres' centres, radii and radiances that a Float's lanes of shading points read in one
-// transpose. How a sphere light is sampled is render/lights/sphere_light.hpp.
-//
-// The choice is proportional to emitted power (area times mean radiance): it costs one binary
-// search, needs no state per shading point and is exact for a scene with one lamp, which is the
-// common case. Its weakness is a scene where a large dim emitter (a glowing sky dome) outshines
-// small bright lamps in power but not at the points being shaded; a choice by estimated
-// contribution at the point (pbrt-v4's light BVH) would serve that case better.
+// The emissive spheres of a scene: a table of the spheres' centres, radii and radiances that a
+// Float's lanes of shading points read in one transpose, and the choice of one in proportion to
+// its emitted power (area times mean radiance), which costs one binary search, needs no state per
+// shading point and is exact for a scene with one lamp. How a sphere light is sampled is
+// render/lights/sphere_light.hpp; the choice by each emitter's estimated light at the shading
+// point, which a room of many lamps needs, is policy/emitter_choice.hpp.
 
 #include <algorithm>
 #include <bit>
@@ -90,8 +87,10 @@ class EmitterTable {
   /// Chooses in proportion to power: area times the mean of the radiance's channels.
   explicit EmitterTable(std::vector<SphereEmitter> emitters) : emitters_(std::move(emitters)) {
     std::vector<double> power;
-    for (const SphereEmitter& e : emitters_)
+    for (const SphereEmitter& e : emitters_) {
       power.push_back(double(e.radius) * e.radius * channel_mean(e.radiance));
+      mean_radiance_.push_back(float(channel_mean(e.radiance)));
+    }
     cumulative_choice(power, cdf_, probability_);
   }
 
@@ -111,7 +110,13 @@ class EmitterTable {
   /// valid one, whatever its u). Requires !empty().
   template <FloatType F>
   EmitterLanes<F> choose_lanes(F u) const {
-    const IntFor<F> index = choice_index(u);
+    return lanes_of<F>(choice_index(u));
+  }
+
+  /// The emitters `index` (each a valid index) for a Float's lanes, with the probabilities of
+  /// choosing them by power.
+  template <FloatType F>
+  EmitterLanes<F> lanes_of(IntFor<F> index) const {
     EmitterLanes<F> chosen;
     if constexpr (kLanesOf<F> == 1) {
       const SphereEmitter& e = emitters_[std::size_t(index)];
@@ -135,8 +140,8 @@ class EmitterTable {
       chosen.sphere = std::bit_cast<UIntFor<F>>(words[7]);
     } else if constexpr (kLanesOf<F> == 2 * kLaneCount) {
       // Two transposes of eight.
-      const EmitterLanes<FloatLanes> low = choose_lanes(low_half(u));
-      const EmitterLanes<FloatLanes> high = choose_lanes(high_half(u));
+      const EmitterLanes<FloatLanes> low = lanes_of<FloatLanes>(low_half(index));
+      const EmitterLanes<FloatLanes> high = lanes_of<FloatLanes>(high_half(index));
       const auto both3 = [](const Vec3Lanes& a, const Vec3Lanes& b) {
         return Vector3<F>{join(a.x, b.x), join(a.y, b.y), join(a.z, b.z)};
       };
@@ -185,10 +190,17 @@ class EmitterTable {
     return probability_[index];
   }
 
+  /// The mean of the channels of emitter `index`'s radiance, which a choice by contribution
+  /// weighs it by.
+  float mean_radiance(std::uint32_t index) const {
+    return mean_radiance_[index];
+  }
+
  private:
   std::vector<SphereEmitter> emitters_;
   std::vector<float> cdf_;  ///< cumulative probabilities, the last exactly 1
   std::vector<float> probability_;
+  std::vector<float> mean_radiance_;
 };
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -22,6 +22,7 @@
 #include "glint/geometry/ray.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/math/wide.hpp"
+#include "glint/policy/emitter_choice.hpp"
 #include "glint/render/bsdf.hpp"
 #include "glint/render/light.hpp"
 #include "glint/render/lights/point_light_source.hpp"
@@ -66,6 +67,19 @@ class PathContext {
   using SamplerType = typename C::sampler;
   static constexpr bool kSamplesEmitters = C::light_sampling::samples_emitters;
 
+ private:
+  template <typename L>
+  struct ChoiceOf {
+    using type = EmitterChoiceByPower;  // never used: L samples no emitters
+  };
+  template <typename L>
+  requires requires { typename L::emitter_choice; }
+  struct ChoiceOf<L> {
+    using type = typename L::emitter_choice;
+  };
+  using EmitterChoiceOf = typename ChoiceOf<typename C::light_sampling>::type;
+
+ public:
   PathContext(const Scene& scene, int max_depth)
       : scene_(scene),
         background_(scene.background()),
@@ -149,13 +163,15 @@ class PathContext {
         if (lane(weighed, i))
           set_lane(weight, i,
                    emission_weight(lane(rays.origin, i), lane(rays.origin_sphere, i),
+                                   lane(rays.heads_into_origin_sphere, i) != 0,
                                    lane(rays.direction, i), lane(t, i), lane(it.outward_normal, i),
                                    lane(it.surface.emitter, i), lane(from_pdf, i)));
       return it.surface.emission * weight;
     }
   }
 
-  /// Light sampling at the hits of `lanes`: one emitter per lane, chosen by power, and a
+  /// Light sampling at the hits of `lanes`: one emitter per lane, chosen by the light sampling
+  /// policy's emitter choice, and a
   /// direction towards it, reflected by `bsdf` and weighted against the
   /// estimator's own bounce, whose density for a direction is `bounce_pdf(direction)`. One
   /// next_1d and one next_2d per lane whenever the scene has emitters, none otherwise (so a
@@ -170,12 +186,15 @@ class PathContext {
     if (!has_emitters_) return;
     const F u_choice = next_1d(draws, lanes);
     const Vec2For<F> u = next_2d(draws, lanes);
-    const EmitterLanes<F> chosen = scene_.emitters().choose_lanes(u_choice);
+    const EmitterLanes<F> chosen = EmitterChoiceOf::choose(
+        scene_.emitters(),
+        EmitterChoicePoint<F>{it.point, it.at.facing_normal, it.sphere, it.at.from_inside},
+        u_choice);
     const BasicSphereLight<F> light(chosen.center, chosen.radius, chosen.radiance, chosen.sphere);
     const BasicLightSample<F> sample =
         light.sample_li({it.point, it.sphere, it.at.from_inside}, u, lanes);
     const V3 reflected = bsdf.template evaluate<Transport::radiance>(sample.direction);
-    const M arrives = lanes && sample.valid && sample.pdf > 0.0f &&
+    const M arrives = lanes && chosen.probability > 0.0f && sample.valid && sample.pdf > 0.0f &&
                       (reflected.x != 0.0f || reflected.y != 0.0f || reflected.z != 0.0f);
     if (!any(arrives)) return;
     const F light_pdf = chosen.probability * sample.pdf;
@@ -211,14 +230,22 @@ class PathContext {
   }
 
   /// The MIS weight of the emission of emitter `index`, met at distance `t` (outward normal
-  /// `normal` there) by a ray from `origin` (on sphere `origin_sphere`, if any) in `direction`,
-  /// chosen by a bounce with density `from_pdf` > 0.
-  float emission_weight(const Vec3& origin, std::uint32_t origin_sphere, const Vec3& direction,
-                        float t, const Vec3& normal, std::uint32_t index, float from_pdf) const {
+  /// `normal` there) by a ray from `origin` in `direction`, chosen by a bounce with density
+  /// `from_pdf` > 0 from sphere `origin_sphere`, into it if `heads_into_origin_sphere`.
+  float emission_weight(const Vec3& origin, std::uint32_t origin_sphere,
+                        bool heads_into_origin_sphere, const Vec3& direction, float t,
+                        const Vec3& normal, std::uint32_t index, float from_pdf) const {
     const SphereLight emitter(scene_.emitters()[index]);
+    // The bounce that has a density is a reflection, so it left on the side the path arrived
+    // from: the light sample at its origin saw the same point, normal and side, rebuilt here as
+    // the hit computed them (BasicSurfaceInteraction::at_hit), and so chose with the same
+    // probability, to the bit.
+    const Vec3 outward = normalize(origin - scene_.surface(origin_sphere).center);
+    const EmitterChoicePoint<float> at{origin, heads_into_origin_sphere ? -outward : outward,
+                                       origin_sphere, heads_into_origin_sphere};
     // The ray started on its origin sphere; if that is the emitter it hit, it left it inwards
     // (a ray leaving a sphere outwards cannot meet it again), so the point saw it from inside.
-    const float light_pdf = scene_.emitters().probability(index) *
+    const float light_pdf = EmitterChoiceOf::probability(scene_.emitters(), at, index) *
                             emitter.pdf_li({origin, origin_sphere, true}, direction, t, normal);
     return C::light_sampling::bounce_weight(from_pdf, light_pdf);
   }

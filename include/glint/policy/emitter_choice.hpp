@@ -1,0 +1,166 @@
+#pragma once
+// Emitter choice policies: which emissive sphere a light sample at a shading point goes to
+// (policy/light_sampling.hpp's EmitterSampling), and the probability of that choice, which the
+// light sample divides by and multiple importance sampling weighs a bounce that lands on the
+// same emitter against.
+//
+// The choice by power ignores where the point is: in a room of many small lamps, most light
+// samples go to bright lamps far away or behind the surface, and the lamp next to the point is
+// rarely chosen. The choice by contribution weighs every emitter by an estimate of the light it
+// can bring to the point (its radiance times the solid angle it subtends times the sine of the
+// elevation of its highest point), so lamps that are near, bright and high above the surface
+// are chosen more, and lamps wholly below the surface's horizon never. Any estimate that is
+// positive wherever the emitter can light the point keeps the estimator unbiased; a better one only
+// lowers the noise. Both choices are written once over the width type, so a lane's choice and
+// probability are the same bits at every width, and the probability a bounce's weight needs is
+// computed from the bounce's origin alone.
+
+#include <concepts>
+#include <cstdint>
+
+#include "glint/instruction_set.hpp"
+#include "glint/math/vector.hpp"
+#include "glint/math/wide.hpp"
+#include "glint/scene/emitters.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE {
+
+/// A Float's lanes of shading points an emitter is chosen for: where each lies, the unit normal
+/// on the side light reflects from (the report's material's one lobe that a light sample serves
+/// is diffuse reflection), the sphere it lies on and whether it is seen from that sphere's inside.
+template <typename F>
+struct EmitterChoicePoint {
+  Vec3For<F> point;
+  Vec3For<F> normal;
+  UIntFor<F> sphere;
+  MaskFor<F> from_inside;
+};
+
+/// How light sampling chooses an emitter: `choose` gives each lane of points an emitter and the
+/// probability of choosing it (zero where it can choose none, which then brings no light), and
+/// `probability` is that probability for one point and one emitter. Both at every width.
+template <typename C>
+concept EmitterChoice = requires(const EmitterTable& table, const EmitterChoicePoint<float>& at,
+                                 float u, std::uint32_t index) {
+  { C::choose(table, at, u) } -> std::same_as<EmitterLanes<float>>;
+  { C::probability(table, at, index) } -> std::same_as<float>;
+};
+
+/// In proportion to power (EmitterTable's choice): one binary search, the same for every point.
+struct EmitterChoiceByPower {
+  template <FloatType F>
+  static EmitterLanes<F> choose(const EmitterTable& table, const EmitterChoicePoint<F>&, F u) {
+    return table.choose_lanes(u);
+  }
+  static float probability(const EmitterTable& table, const EmitterChoicePoint<float>&,
+                           std::uint32_t index) {
+    return table.probability(index);
+  }
+};
+
+/// In proportion to each emitter's estimated light at the point: two passes over the emitters
+/// (the sum of the estimates, then the one where the running sum passes u times it), so the cost
+/// grows with their number. The probability of one emitter sums the estimates again at the
+/// bounce's origin, in the same order, which gives the choice's own bits.
+struct EmitterChoiceByContribution {
+  /// The estimate for emitter `index` at the points `at`, an irradiance over pi: seen from
+  /// outside, its mean radiance L times (r/d)^2 (the solid angle of a small sphere over pi) times
+  /// (h + r)/d at most one, where h is the height of its centre above the point's tangent plane,
+  /// so that (h + r)/d is the sine of the elevation of its highest point; L from inside, where
+  /// it fills the hemisphere. Positive exactly where some of the sphere is above the plane
+  /// (h > -r); zero where the point lies on its outer surface. One square root and one
+  /// division: the estimate runs for every emitter at every light sample.
+  template <FloatType F>
+  static F estimate(const EmitterTable& table, std::uint32_t index,
+                    const EmitterChoicePoint<F>& at) {
+    using V3 = Vec3For<F>;
+    const SphereEmitter& e = table[index];
+    const V3 to_center = splat_vector<V3>(e.center) - at.point;
+    const F distance2 = dot(to_center, to_center);
+    const F radius = splat<F>(e.radius);
+    const auto on_light = at.sphere == e.sphere;
+    const MaskFor<F> outside = !on_light && distance2 > radius * radius;
+    const MaskFor<F> none = on_light && !at.from_inside;
+    const F distance = sqrt(distance2);
+    const F top = dot(at.normal, to_center) + radius;
+    // Lanes inside divide by zero where the point is the centre, and the select drops them.
+    const F seen_from_outside =
+        select(top > 0.0f, (radius * radius) * min(distance, top) / (distance2 * distance),
+               splat<F>(0.0f));
+    const F seen = select(outside, seen_from_outside, select(none, splat<F>(0.0f), splat<F>(1.0f)));
+    return table.mean_radiance(index) * seen;
+  }
+
+  /// The emitter of each lane by its share of the summed estimates, with that share as its
+  /// probability (zero, and emitter 0, where every estimate is zero).
+  template <FloatType F>
+  static EmitterLanes<F> choose(const EmitterTable& table, const EmitterChoicePoint<F>& at, F u) {
+    const auto count = std::uint32_t(table.size());
+    if (count <= kKeptEstimates) {
+      F kept[kKeptEstimates];
+      for (std::uint32_t i = 0; i < count; ++i)
+        kept[i] = estimate(table, i, at);
+      return choose_by(
+          table, [&](std::uint32_t i) { return kept[i]; }, u);
+    }
+    return choose_by(
+        table, [&](std::uint32_t i) { return estimate(table, i, at); }, u);
+  }
+
+  static float probability(const EmitterTable& table, const EmitterChoicePoint<float>& at,
+                           std::uint32_t index) {
+    float total = 0.0f;
+    float share = 0.0f;
+    for (std::uint32_t i = 0; i < std::uint32_t(table.size()); ++i) {
+      const float w = estimate(table, i, at);
+      total += w;
+      if (i == index) share = w;
+    }
+    return total > 0.0f ? share / total : 0.0f;
+  }
+
+  /// Up to this many emitters, choose() keeps each lane's estimates (on the stack, 4 KiB at
+  /// width 16) for its second pass rather than computing them again.
+  static constexpr std::uint32_t kKeptEstimates = 64;
+
+ private:
+  /// choose() with the estimates of emitter i given by estimate_of(i), the same each call.
+  template <FloatType F, typename Estimates>
+  static EmitterLanes<F> choose_by(const EmitterTable& table, Estimates&& estimate_of, F u) {
+    using I = IntFor<F>;
+    using M = MaskFor<F>;
+    const auto count = std::uint32_t(table.size());
+    F total = splat<F>(0.0f);
+    for (std::uint32_t i = 0; i < count; ++i)
+      total += estimate_of(i);
+    const F target = u * total;
+    F running = splat<F>(0.0f);
+    I index = splat<I>(0);
+    F share = splat<F>(0.0f);
+    // Where u * total rounds up to total, the running sum never passes it: the last emitter
+    // with an estimate is the choice there.
+    I last_index = splat<I>(0);
+    F last_share = splat<F>(0.0f);
+    M pending = total > 0.0f;
+    for (std::uint32_t i = 0; i < count && any(pending); ++i) {
+      const F w = estimate_of(i);
+      running += w;
+      const M counted = pending && w > 0.0f;
+      const M taken = counted && running > target;
+      index = select(taken, splat<I>(std::int32_t(i)), index);
+      share = select(taken, w, share);
+      last_index = select(counted, splat<I>(std::int32_t(i)), last_index);
+      last_share = select(counted, w, last_share);
+      pending = pending && !taken;
+    }
+    index = select(pending, last_index, index);
+    share = select(pending, last_share, share);
+    EmitterLanes<F> chosen = table.lanes_of<F>(index);
+    chosen.probability = select(total > 0.0f, share / total, splat<F>(0.0f));
+    return chosen;
+  }
+};
+
+static_assert(EmitterChoice<EmitterChoiceByPower> && EmitterChoice<EmitterChoiceByContribution>);
+
+}  // namespace glint::inline GLINT_ISA_NAMESPACE
