@@ -41,7 +41,9 @@ struct report : Config<IndependentSampler, TreePathTracing, ExactFresnel, Gaussi
   static constexpr VariantInfo info{"report", "the report's renderer (baseline)", kSameImage};
 };
 
-// The best image per second measured by bench/run-all (bench/results/variants.md).
+// The best image per second measured by bench/run-all (bench/results/variants.md), with light
+// samples' emitters chosen by their light at the point: less noise on the surfaces a room of
+// many lamps lights, for more time per sample (docs/benchmarks.md, "Choosing among many lamps").
 struct fast
     : Config<HybridSobolSampler<6>, PathTracing, ExactFresnel, GaussianAntialiasing, BuiltinShading,
              CosineHemisphere, RussianRoulette, EmitterSampling<PowerHeuristic>> {
