@@ -79,7 +79,10 @@ TEST_CASE("emitter choice: by contribution, each emitter is chosen with its prob
   // to within the two steps a boundary can fall between, and each choice must report p_i.
   constexpr int kUs = 4096;
   glint::Pcg32 rng(11u, 2u);
-  for (const int count : {1, 3, 60}) {
+  // Up to EmitterChoiceByContribution::kKeptEstimates emitters the second pass reads the first's
+  // estimates, beyond it computes them again: both ways are counted.
+  static_assert(Choice::kKeptEstimates == 64);
+  for (const int count : {1, 3, 60, 64, 65, 150}) {
     const EmitterTable table = scattered_lamps(count, std::uint64_t(count));
     for (int trial = 0; trial < 40; ++trial) {
       const EmitterChoicePoint<float> at = random_point(rng);
@@ -108,6 +111,11 @@ TEST_CASE("emitter choice: by contribution, each emitter is chosen with its prob
         CHECK(c.probability == float(p[index]));
         CHECK(c.probability > 0.0f);
       }
+      // The largest u, where u times the sum may round up to the sum: still an emitter with a
+      // chance, and its own probability.
+      const glint::EmitterLanes<float> last = Choice::choose(table, at, std::nextafter(1.0f, 0.0f));
+      CHECK(last.probability > 0.0f);
+      CHECK(last.probability == float(p[std::size_t(last.sphere)]));
       for (std::size_t i = 0; i < std::size_t(count); ++i) {
         INFO("lamp " << i << ": chosen " << chosen[i] << " times, probability " << p[i]);
         CHECK(std::abs(double(chosen[i]) - kUs * p[i]) <= 2.0);
@@ -190,34 +198,36 @@ TEMPLATE_TEST_CASE_SIG("emitter choice: by contribution, every width chooses wha
                        "[emitters][unit][lanes]", ((int W), W), 8, 16) {
   using F = glint::Float<W>;
   glint::Pcg32 rng(13u, 6u);
-  const EmitterTable table = scattered_lamps(60, 7u);
-  for (int round = 0; round < 64; ++round) {
-    EmitterChoicePoint<F> at;
-    F u;
-    std::vector<EmitterChoicePoint<float>> points;
-    for (int i = 0; i < W; ++i) {
-      EmitterChoicePoint<float> p = random_point(rng);
-      // Some lanes on lamp 3, from either side.
-      if (i % 5 == 0) {
-        p.sphere = 3;
-        p.from_inside = i % 2 == 0;
+  for (const int count : {60, 150}) {
+    const EmitterTable table = scattered_lamps(count, 7u);
+    for (int round = 0; round < 64; ++round) {
+      EmitterChoicePoint<F> at;
+      F u;
+      std::vector<EmitterChoicePoint<float>> points;
+      for (int i = 0; i < W; ++i) {
+        EmitterChoicePoint<float> p = random_point(rng);
+        // Some lanes on lamp 3, from either side.
+        if (i % 5 == 0) {
+          p.sphere = 3;
+          p.from_inside = i % 2 == 0;
+        }
+        points.push_back(p);
+        at.point.set_lane(i, p.point);
+        at.normal.set_lane(i, p.normal);
+        at.sphere[i] = p.sphere;
+        at.from_inside[i] = p.from_inside ? -1 : 0;
+        u[i] = rng.next_float();
       }
-      points.push_back(p);
-      at.point.set_lane(i, p.point);
-      at.normal.set_lane(i, p.normal);
-      at.sphere[i] = p.sphere;
-      at.from_inside[i] = p.from_inside ? -1 : 0;
-      u[i] = rng.next_float();
-    }
-    const glint::EmitterLanes<F> chosen = Choice::choose(table, at, u);
-    for (int i = 0; i < W; ++i) {
-      const glint::EmitterLanes<float> one = Choice::choose(table, points[std::size_t(i)], u[i]);
-      INFO("round " << round << ", lane " << i);
-      CHECK(chosen.sphere[i] == one.sphere);
-      CHECK(chosen.probability[i] == one.probability);
-      CHECK(chosen.center.lane(i) == one.center);
-      CHECK(chosen.radius[i] == one.radius);
-      CHECK(chosen.radiance.lane(i) == one.radiance);
+      const glint::EmitterLanes<F> chosen = Choice::choose(table, at, u);
+      for (int i = 0; i < W; ++i) {
+        const glint::EmitterLanes<float> one = Choice::choose(table, points[std::size_t(i)], u[i]);
+        INFO("round " << round << ", lane " << i);
+        CHECK(chosen.sphere[i] == one.sphere);
+        CHECK(chosen.probability[i] == one.probability);
+        CHECK(chosen.center.lane(i) == one.center);
+        CHECK(chosen.radius[i] == one.radius);
+        CHECK(chosen.radiance.lane(i) == one.radiance);
+      }
     }
   }
 }
