@@ -59,9 +59,9 @@ struct EmitterChoiceByPower {
 };
 
 /// In proportion to each emitter's estimated light at the point: two passes over the emitters
-/// (the sum of the estimates, then the one where the running sum passes u times it), so the cost
-/// grows with their number. The probability of one emitter sums the estimates again at the
-/// bounce's origin, in the same order, which gives the choice's own bits.
+/// (the sum of the estimates, then a count of those before the running sum passes u times the
+/// sum), so the cost grows with their number. The probability of one emitter sums the estimates
+/// again at the bounce's origin, in the same order, which gives the choice's own bits.
 struct EmitterChoiceByContribution {
   /// The estimate for emitter `index` at the points `at`, an irradiance over pi: seen from
   /// outside, its mean radiance L times (r/d)^2 (the solid angle of a small sphere over pi) times
@@ -96,9 +96,20 @@ struct EmitterChoiceByContribution {
   template <FloatType F>
   static EmitterLanes<F> choose(const EmitterTable& table, const EmitterChoicePoint<F>& at, F u) {
     const auto count = std::uint32_t(table.size());
-    if (count <= kKeptEstimates) return choose_kept(table, at, u);
+    if (count <= kKeptEstimates) {
+      F kept[kKeptEstimates];
+      for (std::uint32_t i = 0; i < count; ++i)
+        kept[i] = estimate(table, i, at);
+      return choose_by(
+          table, [&](std::uint32_t i) { return kept[i]; },
+          [&](int lane_index, std::uint32_t i) { return lane(kept[i], lane_index); }, u);
+    }
     return choose_by(
-        table, [&](std::uint32_t i) { return estimate(table, i, at); }, u);
+        table, [&](std::uint32_t i) { return estimate(table, i, at); },
+        [&](int lane_index, std::uint32_t i) {
+          return estimate(table, i, point_of_lane(at, lane_index));
+        },
+        u);
   }
 
   static float probability(const EmitterTable& table, const EmitterChoicePoint<float>& at,
@@ -118,26 +129,30 @@ struct EmitterChoiceByContribution {
   static constexpr std::uint32_t kKeptEstimates = 64;
 
  private:
-  /// choose() for at most kKeptEstimates emitters: the estimates kept from the first pass, and
-  /// the choice counted rather than searched. The running sum never falls, and rises exactly at
-  /// an emitter with an estimate, so the number of emitters at which it is not above u times
-  /// the total is the first at which it is: choose_by's emitter, in three operations each.
   template <FloatType F>
-  static EmitterLanes<F> choose_kept(const EmitterTable& table, const EmitterChoicePoint<F>& at,
-                                     F u) {
+  static EmitterChoicePoint<float> point_of_lane(const EmitterChoicePoint<F>& at, int i) {
+    return {lane(at.point, i), lane(at.normal, i), lane(at.sphere, i),
+            lane(at.from_inside, i) != 0};
+  }
+
+  /// choose() with the estimates of emitter i given by estimate_of(i) for all lanes and by
+  /// lane_estimate(lane, i) for one, the same bits each call. The running sum never falls, and
+  /// rises exactly at an emitter with an estimate, so the number of emitters at which it is not
+  /// above u times the total is the first at which it is: the choice, counted in three
+  /// operations per emitter.
+  template <FloatType F, typename Estimates, typename LaneEstimate>
+  static EmitterLanes<F> choose_by(const EmitterTable& table, Estimates&& estimate_of,
+                                   LaneEstimate&& lane_estimate, F u) {
     using I = IntFor<F>;
     const auto count = std::uint32_t(table.size());
-    F kept[kKeptEstimates];
     F total = splat<F>(0.0f);
-    for (std::uint32_t i = 0; i < count; ++i) {
-      kept[i] = estimate(table, i, at);
-      total += kept[i];
-    }
+    for (std::uint32_t i = 0; i < count; ++i)
+      total += estimate_of(i);
     const F target = u * total;
     F running = splat<F>(0.0f);
     I index = splat<I>(0);
     for (std::uint32_t i = 0; i < count; ++i) {
-      running += kept[i];
+      running += estimate_of(i);
       if constexpr (kLanesOf<F> == 1)
         index += running <= target ? 1 : 0;
       else
@@ -150,50 +165,19 @@ struct EmitterChoiceByContribution {
         continue;
       }
       auto chosen = std::uint32_t(lane(index, lane_index));
-      // Where u * total rounds up to total, the running sum never passes it: the last emitter
-      // with an estimate is the choice there.
-      if (chosen == count)
-        while (!(lane(kept[--chosen], lane_index) > 0.0f)) {
-        }
+      float w = 0.0f;
+      if (chosen < count) {
+        w = lane_estimate(lane_index, chosen);
+      } else {
+        // Where u * total rounds up to total, the running sum never passes it: the last
+        // emitter with an estimate is the choice there.
+        do
+          w = lane_estimate(lane_index, --chosen);
+        while (!(w > 0.0f));
+      }
       set_lane(index, lane_index, std::int32_t(chosen));
-      set_lane(share, lane_index, lane(kept[chosen], lane_index));
+      set_lane(share, lane_index, w);
     }
-    EmitterLanes<F> chosen = table.lanes_of<F>(index);
-    chosen.probability = select(total > 0.0f, share / total, splat<F>(0.0f));
-    return chosen;
-  }
-
-  /// choose() with the estimates of emitter i given by estimate_of(i), the same each call.
-  template <FloatType F, typename Estimates>
-  static EmitterLanes<F> choose_by(const EmitterTable& table, Estimates&& estimate_of, F u) {
-    using I = IntFor<F>;
-    using M = MaskFor<F>;
-    const auto count = std::uint32_t(table.size());
-    F total = splat<F>(0.0f);
-    for (std::uint32_t i = 0; i < count; ++i)
-      total += estimate_of(i);
-    const F target = u * total;
-    F running = splat<F>(0.0f);
-    I index = splat<I>(0);
-    F share = splat<F>(0.0f);
-    // Where u * total rounds up to total, the running sum never passes it: the last emitter
-    // with an estimate is the choice there.
-    I last_index = splat<I>(0);
-    F last_share = splat<F>(0.0f);
-    M pending = total > 0.0f;
-    for (std::uint32_t i = 0; i < count && any(pending); ++i) {
-      const F w = estimate_of(i);
-      running += w;
-      const M counted = pending && w > 0.0f;
-      const M taken = counted && running > target;
-      index = select(taken, splat<I>(std::int32_t(i)), index);
-      share = select(taken, w, share);
-      last_index = select(counted, splat<I>(std::int32_t(i)), last_index);
-      last_share = select(counted, w, last_share);
-      pending = pending && !taken;
-    }
-    index = select(pending, last_index, index);
-    share = select(pending, last_share, share);
     EmitterLanes<F> chosen = table.lanes_of<F>(index);
     chosen.probability = select(total > 0.0f, share / total, splat<F>(0.0f));
     return chosen;

@@ -68,16 +68,10 @@ class PathContext {
   static constexpr bool kSamplesEmitters = C::light_sampling::samples_emitters;
 
  private:
-  template <typename L>
-  struct ChoiceOf {
-    using type = EmitterChoiceByPower;  // never used: L samples no emitters
-  };
-  template <typename L>
-  requires requires { typename L::emitter_choice; }
-  struct ChoiceOf<L> {
-    using type = typename L::emitter_choice;
-  };
-  using EmitterChoiceOf = typename ChoiceOf<typename C::light_sampling>::type;
+  /// The light sampling policy's emitter choice, named only where the policy samples emitters
+  /// (the default argument is resolved where it is used).
+  template <typename L = typename C::light_sampling>
+  using EmitterChoiceOf = typename L::emitter_choice;
 
  public:
   PathContext(const Scene& scene, int max_depth)
@@ -186,7 +180,7 @@ class PathContext {
     if (!has_emitters_) return;
     const F u_choice = next_1d(draws, lanes);
     const Vec2For<F> u = next_2d(draws, lanes);
-    const EmitterLanes<F> chosen = EmitterChoiceOf::choose(
+    const EmitterLanes<F> chosen = EmitterChoiceOf<>::choose(
         scene_.emitters(),
         EmitterChoicePoint<F>{it.point, it.at.facing_normal, it.sphere, it.at.from_inside},
         u_choice);
@@ -245,7 +239,7 @@ class PathContext {
                                        origin_sphere, heads_into_origin_sphere};
     // The ray started on its origin sphere; if that is the emitter it hit, it left it inwards
     // (a ray leaving a sphere outwards cannot meet it again), so the point saw it from inside.
-    const float light_pdf = EmitterChoiceOf::probability(scene_.emitters(), at, index) *
+    const float light_pdf = EmitterChoiceOf<>::probability(scene_.emitters(), at, index) *
                             emitter.pdf_li({origin, origin_sphere, true}, direction, t, normal);
     return C::light_sampling::bounce_weight(from_pdf, light_pdf);
   }
