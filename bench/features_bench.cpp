@@ -33,9 +33,11 @@
 #include "glint/policy/sphere_shading.hpp"
 #include "glint/render/estimators/bidirectional.hpp"
 #include "glint/render/lights/sphere_light.hpp"
+#include "glint/render/materials/microfacet_material.hpp"
 #include "glint/render/merge_grid.hpp"
 #include "glint/scene/emitters.hpp"
 #include "glint/scene/inclusion_tree.hpp"
+#include "glint/scene/metals.hpp"
 #include "glint/scene/scene.hpp"
 #include "glint/scene/scene_description.hpp"
 
@@ -404,6 +406,91 @@ BENCHMARK_TEMPLATE(BM_Shading, glint::BuiltinShading)
     ->Arg(1)
     ->Arg(2)
     ->Arg(-1);
+
+// ---------------------------------------------------------------------------------------------
+// Mirror lobes: what a rough or metal mirror costs a hit against the ideal mirror
+
+enum MirrorKind {
+  kReportMirror = 0,  // the report's material (ReportMaterial)
+  kIdealMirror = 1,   // the same mirror through the microfacet material
+  kSmoothGold = 2,
+  kRoughMirror = 3,
+  kRoughGold = 4,
+};
+
+/// Hits on a unit sphere's top from directions spread over the hemisphere, each with a light
+/// direction above the surface, the sphere a mirror of the kind.
+struct MirrorInputs {
+  glint::SurfaceProperties surface;
+  std::vector<glint::SurfaceInteraction> hits;
+  std::vector<Vec3> incoming, lights;
+  explicit MirrorInputs(MirrorKind kind) : hits(kInputs), incoming(kInputs), lights(kInputs) {
+    glint::Material m;
+    m.diffuse = 0.0f;
+    m.mirror = 1.0f;
+    if (kind == kSmoothGold || kind == kRoughGold) {
+      const glint::Metal gold = *glint::metal_named("gold");
+      m.metal_eta = gold.eta;
+      m.metal_k = gold.k;
+    }
+    if (kind == kRoughMirror || kind == kRoughGold) m.mirror_roughness = 0.4f;
+    surface = {m,
+               Vec3(0.0f),
+               1.0f,
+               glint::ShadingKind::uniform,
+               false,
+               m.has_mirror_finish(),
+               glint::kNotAnEmitter};
+    glint::Pcg32 rng(6, 6);
+    const Vec3 normal(0.0f, 0.0f, 1.0f);
+    for (std::size_t i = 0; i < kInputs; ++i) {
+      Vec3 d = random_unit_vector(rng);
+      incoming[i] = d.z > 0.0f ? -d : d;
+      const Vec3 l = random_unit_vector(rng);
+      lights[i] = l.z < 0.0f ? -l : l;
+      glint::SurfaceInteraction& it = hits[i];
+      it.point = normal;
+      it.outward_normal = normal;
+      it.sphere = 0u;
+      glint::detail::set_surface_lane(it.surface, 0, surface);
+      it.at = glint::detail::interface_at(incoming[i], normal);
+    }
+  }
+};
+
+using MirrorConfig =
+    glint::Config<glint::IndependentSampler, glint::PathTracing, glint::ExactFresnel,
+                  glint::GaussianAntialiasing, glint::BuiltinShading, glint::CosineHemisphere,
+                  glint::RussianRoulette, glint::PointLightsOnly, glint::MicrofacetMaterialModel>;
+
+/// A hit's material built, a direction sampled, and a light direction's value and density: the
+/// material's share of a path's step.
+template <typename B>
+void run_mirror_lobe(benchmark::State& state, const MirrorInputs& in) {
+  glint::IndependentSampler sampler;
+  sampler.start({1u, 1u, 0u, 1u, 1u});
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & kMask;
+    const B bsdf(in.hits[k], in.incoming[k]);
+    const glint::ScatterSample s = bsdf.sample(sampler);
+    benchmark::DoNotOptimize(s);
+    benchmark::DoNotOptimize(bsdf.evaluate(in.lights[k]));
+    benchmark::DoNotOptimize(bsdf.pdf(in.lights[k]));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+void BM_MirrorLobe(benchmark::State& state) {
+  const auto kind = static_cast<MirrorKind>(state.range(0));
+  const MirrorInputs in(kind);
+  if (kind == kReportMirror)
+    run_mirror_lobe<glint::ReportMaterial<MirrorConfig, float>>(state, in);
+  else
+    run_mirror_lobe<glint::MicrofacetMaterial<MirrorConfig, float>>(state, in);
+}
+// 0 the report's mirror, 1 the same through the microfacet material, 2 polished gold, 3 a rough
+// mirror (roughness 0.4), 4 rough gold.
+BENCHMARK(BM_MirrorLobe)->ArgName("kind")->DenseRange(0, 4);
 
 // ---------------------------------------------------------------------------------------------
 // Inclusion tree

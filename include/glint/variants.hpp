@@ -44,13 +44,14 @@ struct report : Config<IndependentSampler, TreePathTracing, ExactFresnel, Gaussi
 // The best image per second measured by bench/run-all (bench/results/variants.md), with light
 // samples' emitters chosen by their light at the point: less noise on the surfaces a room of
 // many lamps lights, for more time per sample (docs/benchmarks.md, "Choosing among many lamps").
-struct fast
-    : Config<HybridSobolSampler<6>, PathTracing, ExactFresnel, GaussianAntialiasing, BuiltinShading,
-             CosineHemisphere, RussianRoulette, EmitterSampling<PowerHeuristic>> {
+struct fast : Config<HybridSobolSampler<6>, PathTracing, ExactFresnel, GaussianAntialiasing,
+                     BuiltinShading, CosineHemisphere, RussianRoulette,
+                     EmitterSampling<PowerHeuristic>, MicrofacetMaterialModel> {
   static constexpr VariantInfo info{"fast",
                                     "Sobol' for the first 6 requests, one lobe per bounce, cosine "
                                     "bounces, Russian roulette, emitter sampling with MIS, "
-                                    "emitters chosen by their light at the point",
+                                    "emitters chosen by their light at the point, rough and "
+                                    "metal mirrors",
                                     kSameImage};
 };
 
@@ -97,8 +98,9 @@ struct stratified_sampler : report::with_sampler<StratifiedSampler> {
 struct sobol_sampler : report::with_sampler<SobolSampler> {
   static constexpr VariantInfo info{"sobol_sampler", "Owen-scrambled Sobol' samples", kSameImage};
 };
-/// The ablations of `fast`: what light sampling buys where the best other policies are on, and
-/// what choosing the emitter by its light at the point buys over choosing it by power.
+/// The ablations of `fast`: what light sampling buys where the best other policies are on, what
+/// choosing the emitter by its light at the point buys over choosing it by power, and what the
+/// rough and metal mirrors cost a scene that has none.
 struct fast_no_emitter_sampling : fast::with_light_sampling<PointLightsOnly> {
   static constexpr VariantInfo info{
       "fast_no_emitter_sampling", "`fast` with emissive spheres found by bounces only", kSameImage};
@@ -108,6 +110,12 @@ struct fast_emitters_by_power
   static constexpr VariantInfo info{
       "fast_emitters_by_power",
       "`fast` with each light sample's emitter chosen by power, not by its light at the point",
+      kSameImage};
+};
+struct fast_ideal_mirrors : fast::with_material_model<ReportMaterialModel> {
+  static constexpr VariantInfo info{
+      "fast_ideal_mirrors",
+      "`fast` with the report's material only (rejects scenes with rough or metal mirrors)",
       kSameImage};
 };
 /// The estimator that finds a point light's light through glass: `fast`'s policies, followed
@@ -147,11 +155,11 @@ struct emitter_sampling : report::with_light_sampling<EmitterSampling<PowerHeuri
 };
 
 /// Every named variant, `report` first: the order of every table.
-using all =
-    std::tuple<report, fast, no_fresnel, schlick_fresnel, no_antialiasing, box_antialiasing,
-               tent_antialiasing, cosine_hemisphere, stochastic_material, russian_roulette,
-               uniform_shading, stratified_sampler, sobol_sampler, emitter_sampling,
-               fast_no_emitter_sampling, fast_emitters_by_power, light_tracing, bidirectional, vcm>;
+using all = std::tuple<report, fast, no_fresnel, schlick_fresnel, no_antialiasing, box_antialiasing,
+                       tent_antialiasing, cosine_hemisphere, stochastic_material, russian_roulette,
+                       uniform_shading, stratified_sampler, sobol_sampler, emitter_sampling,
+                       fast_no_emitter_sampling, fast_emitters_by_power, fast_ideal_mirrors,
+                       light_tracing, bidirectional, vcm>;
 
 /// The variant glint-render renders with where nothing is asked for and the path tracer sees all
 /// the scene's light (render/path_tracing_blind_spot.hpp), and glint-render-mpi's.

@@ -26,6 +26,7 @@ struct WithoutDensity {
   static constexpr std::string_view name = "a material without a pdf";
   template <typename C, typename F>
   using bsdf = NoDensity<C, F>;
+  static bool supports(const glint::Material&) { return true; }
 };
 
 using broken = glint::variants::fast::with_material_model<WithoutDensity>;

@@ -56,6 +56,23 @@ TEST_CASE("what the path tracer sees all of", "[blind_spot]") {
   CHECK_FALSE(
       blind_spot("light position=0,20,0 intensity=5 color=0,0,0\n"
                  "sphere center=0,0,0 radius=3 mirror=1 diffuse=0\n"));
+  // A rough mirror has a density: light is sampled towards it as to a diffuse surface.
+  CHECK_FALSE(
+      blind_spot("light position=0,20,0 intensity=100\n"
+                 "sphere center=0,0,0 radius=3 metal=gold mirror_roughness=0.2\n"
+                 "sphere center=0,-1000,0 radius=990 color=0.8,0.8,0.8\n"));
+}
+
+TEST_CASE("a point light and a mirror too smooth to be a microfacet lobe: blind", "[blind_spot]") {
+  for (const char* roughness : {"0", "0.03"}) {
+    INFO("mirror_roughness " << roughness);
+    const auto spot = blind_spot(std::string("light position=0,20,0 intensity=100\n"
+                                             "sphere center=0,0,0 radius=3 metal=silver "
+                                             "mirror_roughness=") +
+                                 roughness + "\n");
+    REQUIRE(spot);
+    CHECK(spot->sphere_line == 2);
+  }
 }
 
 TEST_CASE("the first light that emits is named, not the first light", "[blind_spot]") {

@@ -14,6 +14,7 @@
 #include "glint/config.hpp"
 #include "glint/render/materials/report_material.hpp"
 #include "statistics.hpp"
+#include "top_of_sphere.hpp"
 
 using glint::Color;
 using glint::Lobe;
@@ -34,30 +35,7 @@ using TestConfig =
 
 constexpr double kPi = M_PI;
 
-/// A hit on the top of a unit sphere at the origin (normal +z), seen by a ray travelling in
-/// `incoming`, with everything the material needs.
-struct TopOfSphere {
-  glint::SurfaceProperties surface;
-  glint::Ray ray;
-  glint::SurfaceInteraction interaction;
-
-  TopOfSphere(const Material& material, const Vec3& incoming)
-      : surface{material,
-                Vec3(0.0f),
-                1.0f,
-                glint::ShadingKind::uniform,
-                material.is_fully_transparent(),
-                glint::kNotAnEmitter} {
-    ray.origin = Vec3(0.0f, 0.0f, 1.0f) - incoming;
-    ray.direction = incoming;
-    const Vec3 normal(0.0f, 0.0f, 1.0f);
-    interaction.point = Vec3(0.0f, 0.0f, 1.0f);
-    interaction.outward_normal = normal;
-    interaction.sphere = 0u;
-    glint::detail::set_surface_lane(interaction.surface, 0, surface);
-    interaction.at = glint::detail::interface_at(ray.direction, normal);
-  }
-};
+using glint::test::TopOfSphere;
 
 glint::IndependentSampler seeded_sampler(std::uint32_t index) {
   glint::IndependentSampler sampler;

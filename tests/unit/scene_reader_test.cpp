@@ -222,6 +222,54 @@ TEST_CASE("scene reader: diffuse defaults to 1 - mirror - transparent", "[scene_
   }
 }
 
+TEST_CASE("scene reader: rough and metal mirrors", "[scene_reader]") {
+  const auto material_of = [](const std::string& keys) {
+    const SceneDescription d = read_scene_text("sphere center=0,0,0 radius=1 " + keys + "\n");
+    REQUIRE(d.spheres.size() == 1);
+    return d.spheres[0].material;
+  };
+  const glint::Material gold = material_of("metal=gold mirror_roughness=0.25");
+  CHECK(gold.mirror_roughness == 0.25f);
+  CHECK(gold.metal_eta == glint::metal_named("gold")->eta);
+  CHECK(gold.metal_k == glint::metal_named("gold")->k);
+  // A named metal makes the sphere a mirror unless told otherwise.
+  CHECK(gold.mirror == 1.0f);
+  CHECK(gold.diffuse == 0.0f);
+  CHECK(gold.has_mirror_finish());
+  const glint::Material coated = material_of("metal=copper mirror=0.4");
+  CHECK(coated.mirror == 0.4f);
+  CHECK(coated.diffuse == 0.6f);
+  const glint::Material glassy = material_of("metal=silver transparent=0.25");
+  CHECK(glassy.mirror == 0.75f);
+  CHECK(glassy.diffuse == 0.0f);
+  const glint::Material own = material_of("mirror=1 metal_eta=0.5,0.6,0.7 metal_k=2,3,4");
+  CHECK(own.metal_eta == glint::Vec3(0.5f, 0.6f, 0.7f));
+  CHECK(own.metal_k == glint::Vec3(2.0f, 3.0f, 4.0f));
+  CHECK(own.mirror_roughness == 0.0f);
+  CHECK_FALSE(material_of("mirror=1").has_mirror_finish());
+  CHECK(material_of("mirror=0.5 mirror_roughness=0.5").has_mirror_finish());
+
+  SECTION("errors") {
+    expect_error("sphere center=0,0,0 radius=1 mirror_roughness=0.3\n", 1,
+                 "mirror_roughness roughens the mirror lobe, which this material does not have");
+    expect_error("sphere center=0,0,0 radius=1 mirror=1 mirror_roughness=1.5\n", 1,
+                 "'mirror_roughness' must be in [0, 1], got '1.5'");
+    expect_error("material m metal=brass\n", 1,
+                 "unknown metal 'brass' (expected gold, silver, copper, aluminium)");
+    expect_error(
+        "sphere center=0,0,0 radius=1 metal=gold metal_k=1,1,1\n", 1,
+        "give a metal by name (metal=) or by its index (metal_eta= and metal_k=), not both");
+    expect_error("sphere center=0,0,0 radius=1 mirror=1 metal_k=1,1,1\n", 1,
+                 "metal_eta and metal_k go together");
+    expect_error("sphere center=0,0,0 radius=1 mirror=1 metal_eta=0,1,1 metal_k=1,1,1\n", 1,
+                 "metal_eta components must be in [0.001, 100]");
+    expect_error("sphere center=0,0,0 radius=1 mirror=1 metal_eta=1,1,1 metal_k=1,-1,1\n", 1,
+                 "metal_k components must be in [0, 100]");
+    expect_error("sphere center=0,0,0 radius=1 mirror=0 metal=gold\n", 1,
+                 "a metal reflects through the mirror lobe, which this material does not have");
+  }
+}
+
 TEST_CASE("scene reader: layout rules", "[scene_reader]") {
   SECTION("comments anywhere, blank lines, tabs, several spaces") {
     const SceneDescription d = read_scene_text(
@@ -290,7 +338,8 @@ TEST_CASE("scene reader: syntax errors", "[scene_reader][errors]") {
     expect_error("sphere center=0,0,0 radius=1 radus=2\n", 1, "unknown key 'radus' for sphere");
     expect_error("sphere center=0,0,0 radius=1 radus=2\n", 1,
                  "valid keys: diffuse, color, mirror, mirror_color, transparent, "
-                 "transparent_color, ior, emission, center, radius, material, shading");
+                 "transparent_color, ior, emission, mirror_roughness, metal, metal_eta, metal_k, "
+                 "center, radius, material, shading");
     expect_error("# c\nimage width=10 samples=4\n", 2,
                  "unknown key 'samples' for image (valid keys: width, height, spp, max_depth)");
     expect_error("camera fov=30 target=0,0,0\n", 1, "valid keys: position, look_at, up, fov, near");
@@ -301,7 +350,7 @@ TEST_CASE("scene reader: syntax errors", "[scene_reader][errors]") {
     expect_error("medium index=1\n", 1, "valid keys: ior");
     expect_error("material m shading=octants\n", 1,
                  "valid keys: diffuse, color, mirror, mirror_color, transparent, "
-                 "transparent_color, ior, emission)");
+                 "transparent_color, ior, emission, mirror_roughness, metal, metal_eta, metal_k)");
   }
   SECTION("a key given twice") {
     expect_error("\n\nsphere center=0,0,0 radius=1 radius=2\n", 3, "key 'radius' given twice");

@@ -81,6 +81,16 @@ glint::SceneDescription every_field_scene() {
   sphere.shading = glint::ShadingKind::octants;
   scene.spheres.push_back(sphere);
 
+  sphere = {};  // a rough metal of one's own
+  sphere.center = Vec3(7.0f, 1.0f, -3.0f);
+  sphere.radius = 1.5f;
+  sphere.material.diffuse = 0.25f;
+  sphere.material.mirror = 0.75f;
+  sphere.material.mirror_roughness = 0.3333333f;
+  sphere.material.metal_eta = Color(0.2f, 0.9243f, 1.1f);
+  sphere.material.metal_k = Color(3.9f, 2.45f, 0.0f);
+  scene.spheres.push_back(sphere);
+
   sphere = {};  // pure glass: diffuse left to the default
   sphere.center = Vec3(-5.0f, 0.0f, 12.5f);
   sphere.radius = 3.0f;
@@ -164,6 +174,9 @@ void require_same_scene(const glint::SceneDescription& a, const glint::SceneDesc
     require_same(x.material.transparent_color, y.material.transparent_color);
     REQUIRE(bits(x.material.ior) == bits(y.material.ior));
     require_same(x.material.emission, y.material.emission);
+    REQUIRE(bits(x.material.mirror_roughness) == bits(y.material.mirror_roughness));
+    require_same(x.material.metal_eta, y.material.metal_eta);
+    require_same(x.material.metal_k, y.material.metal_k);
   }
 }
 

@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -38,6 +39,7 @@
 #include "glint/io/input_file.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/scene/material.hpp"
+#include "glint/scene/metals.hpp"
 #include "glint/scene/scene_description.hpp"
 #include "glint/scene/scene_error.hpp"
 #include "glint/scene/validate.hpp"
@@ -119,15 +121,20 @@ enum MaterialKey : int {
   kTransparentColor,
   kIor,
   kEmission,
+  kMirrorRoughness,
+  kMetal,
+  kMetalEta,
+  kMetalK,
   kMaterialKeyCount
 };
 enum SphereKey : int { kCenter = kMaterialKeyCount, kRadius, kMaterialName, kShading };
 inline constexpr std::string_view kMaterialKeys[] = {
-    "diffuse",           "color", "mirror",  "mirror_color", "transparent",
-    "transparent_color", "ior",   "emission"};
+    "diffuse", "color",    "mirror",           "mirror_color", "transparent", "transparent_color",
+    "ior",     "emission", "mirror_roughness", "metal",        "metal_eta",   "metal_k"};
 inline constexpr std::string_view kSphereKeys[] = {
-    "diffuse", "color",    "mirror", "mirror_color", "transparent", "transparent_color",
-    "ior",     "emission", "center", "radius",       "material",    "shading"};
+    "diffuse", "color",    "mirror",           "mirror_color", "transparent", "transparent_color",
+    "ior",     "emission", "mirror_roughness", "metal",        "metal_eta",   "metal_k",
+    "center",  "radius",   "material",         "shading"};
 
 enum ImageKey : int { kWidth, kHeight, kSpp, kMaxDepthKey };
 inline constexpr std::string_view kImageKeys[] = {"width", "height", "spp", "max_depth"};
@@ -140,7 +147,8 @@ inline constexpr std::string_view kAntialiasKeys[] = {"sigma"};
 inline constexpr std::string_view kBackgroundKeys[] = {"color"};
 inline constexpr std::string_view kMediumKeys[] = {"ior"};
 
-static_assert(std::size(kSphereKeys) <= 16 && kShading + 1 == int(std::size(kSphereKeys)));
+static_assert(std::size(kMaterialKeys) == kMaterialKeyCount &&
+              kShading + 1 == int(std::size(kSphereKeys)));
 
 inline constexpr std::string_view kStatements[] = {"image",  "camera", "antialias", "background",
                                                    "medium", "light",  "material",  "sphere"};
@@ -162,7 +170,7 @@ static_assert(std::size(kStatementKeys) == std::size(kStatements) && [] {
 
 /// The key=value tokens of one statement, indexed by their position in the statement's table.
 struct Fields {
-  static constexpr std::size_t kMaxKeys = 16;
+  static constexpr std::size_t kMaxKeys = 32;
   std::array<std::string_view, kMaxKeys> values{};
   std::uint32_t present = 0;
   bool has(int key) const { return (present >> key) & 1u; }
@@ -388,6 +396,29 @@ class Parser {
       m.transparent_color = vec3("transparent_color", f[kTransparentColor]);
     if (f.has(kIor)) m.ior = number("ior", f[kIor]);
     if (f.has(kEmission)) m.emission = vec3("emission", f[kEmission]);
+    if (f.has(kMirrorRoughness))
+      m.mirror_roughness = coefficient("mirror_roughness", f[kMirrorRoughness]);
+    if (f.has(kMetal)) {
+      if (f.has(kMetalEta) || f.has(kMetalK))
+        fail("give a metal by name (metal=) or by its index (metal_eta= and metal_k=), not both");
+      const std::optional<Metal> metal = metal_named(f[kMetal]);
+      if (!metal) {
+        std::string expected;
+        for (const std::string_view known : kMetalNames)
+          expected += std::string(expected.empty() ? "" : ", ") + std::string(known);
+        fail(detail::concat({"unknown metal ", quoted(f[kMetal]), " (expected ", expected, ")"}));
+      }
+      m.metal_eta = metal->eta;
+      m.metal_k = metal->k;
+    } else if (f.has(kMetalEta) != f.has(kMetalK)) {
+      fail("metal_eta and metal_k go together: give both, or name a metal with metal=");
+    } else if (f.has(kMetalEta)) {
+      m.metal_eta = vec3("metal_eta", f[kMetalEta]);
+      m.metal_k = vec3("metal_k", f[kMetalK]);
+    }
+    // A metal is a mirror lobe: naming one without a mirror coefficient makes the sphere all
+    // metal (but for its transparency).
+    if (m.is_metal() && !f.has(kMirror)) m.mirror = 1.0f - m.transparent;
     if (f.has(kDiffuse)) {
       m.diffuse = coefficient("diffuse", f[kDiffuse]);
     } else {

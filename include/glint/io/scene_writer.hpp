@@ -107,6 +107,14 @@ inline void append_material(std::string& out, const Material& m) {
     append_key(out, "transparent_color", m.transparent_color);
   if (!same_bits(m.ior, defaults.ior)) append_key(out, "ior", m.ior);
   if (!same_bits(m.emission, defaults.emission)) append_key(out, "emission", m.emission);
+  if (!same_bits(m.mirror_roughness, defaults.mirror_roughness))
+    append_key(out, "mirror_roughness", m.mirror_roughness);
+  // By its index, not its name: the reader's mirror default for a named metal is then never
+  // relied on, and a metal of one's own round-trips as well.
+  if (m.is_metal()) {
+    append_key(out, "metal_eta", m.metal_eta);
+    append_key(out, "metal_k", m.metal_k);
+  }
 }
 
 /// Formats the scene line by line into `buffer`, handing it to `sink` whenever it passes

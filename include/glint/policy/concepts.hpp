@@ -84,12 +84,14 @@ concept Estimator = requires {
 };
 
 /// Which materials spheres can have: the policy names the Bsdf (render/bsdf.hpp) of a hit, a class
-/// template over the Config and the width: `P::template bsdf<C, F>`. (The check forms it for
-/// `void` without instantiating it, as Estimator does.)
+/// template over the Config and the width: `P::template bsdf<C, F>` (the check forms it for
+/// `void` without instantiating it, as Estimator does), and says which scene materials it
+/// renders (`supports`), so that a variant refuses a scene it would render wrongly.
 template <typename P>
-concept MaterialModel = requires {
+concept MaterialModel = requires(const Material& material) {
   { P::name } -> std::convertible_to<std::string_view>;
   typename P::template bsdf<void, float>;
+  { P::supports(material) } -> std::same_as<bool>;
 };
 
 /// Fresnel reflectance of a dielectric interface, used for fully transparent spheres.

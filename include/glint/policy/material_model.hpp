@@ -14,6 +14,8 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 
 template <typename C, typename F = float>
 class ReportMaterial;  // render/materials/report_material.hpp
+template <typename C, typename F = float>
+class MicrofacetMaterial;  // render/materials/microfacet_material.hpp
 
 /// The report's material: a diffuse lobe coloured by the sphere's shading, a mirror and a
 /// transmission lobe with Fresnel reflection and the inclusion tree's outside index, mixed by the
@@ -22,8 +24,21 @@ struct ReportMaterialModel {
   static constexpr std::string_view name = "the report's material";
   template <typename C, typename F>
   using bsdf = ReportMaterial<C, F>;
+  /// The report's lobes only: no rough or metal mirror.
+  static bool supports(const Material& material) { return !material.has_mirror_finish(); }
 };
 
-static_assert(MaterialModel<ReportMaterialModel>);
+/// The report's material with a mirror lobe that may be rough (a Trowbridge-Reitz microfacet
+/// lobe) and reflect as a metal (a conductor's Fresnel reflectance): every material of the scene
+/// format. Spheres without either render as under ReportMaterialModel, to the bit. Its rough
+/// lobe is not one of the report's tree estimator's lobes, which takes ReportMaterialModel only.
+struct MicrofacetMaterialModel {
+  static constexpr std::string_view name = "microfacet mirrors and metals";
+  template <typename C, typename F>
+  using bsdf = MicrofacetMaterial<C, F>;
+  static bool supports(const Material&) { return true; }
+};
+
+static_assert(MaterialModel<ReportMaterialModel> && MaterialModel<MicrofacetMaterialModel>);
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE

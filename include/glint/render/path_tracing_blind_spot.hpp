@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "glint/instruction_set.hpp"
+#include "glint/render/materials/microfacet.hpp"
 #include "glint/scene/scene.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
@@ -24,7 +25,8 @@ struct PathTracingBlindSpot {
 };
 
 /// The first point light that emits and the first sphere that reflects or transmits
-/// specularly (a non-zero mirror or transparent coefficient), where the scene has both; none
+/// specularly (a non-zero transparent coefficient, or a mirror that is not rough enough to be a
+/// microfacet lobe, which a shadow ray reaches), where the scene has both; none
 /// otherwise. Conservative: it does not ask whether the light reaches the sphere or whether the
 /// caustic lands in view, so a scene it names may render the same by both estimators, but a
 /// scene it clears is one the path tracer renders without bias.
@@ -39,7 +41,9 @@ inline std::optional<PathTracingBlindSpot> path_tracing_blind_spot(const Scene& 
   if (!light) return std::nullopt;
   for (std::uint32_t sphere = 0; sphere < scene.sphere_count(); ++sphere) {
     const Material& material = scene.surface(sphere).material;
-    if (material.mirror > 0.0f || material.transparent > 0.0f)
+    const bool ideal_mirror =
+        material.mirror > 0.0f && !is_microfacet_lobe(material.mirror_roughness);
+    if (ideal_mirror || material.transparent > 0.0f)
       return PathTracingBlindSpot{light->line, scene.sphere_line(sphere)};
   }
   return std::nullopt;

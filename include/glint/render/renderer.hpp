@@ -171,9 +171,18 @@ std::optional<std::uint32_t> first_unsupported_sphere(const Scene& scene) {
   return std::nullopt;
 }
 
+/// The first sphere whose material variant C's material model does not render.
+template <RenderConfig C>
+std::optional<std::uint32_t> first_unsupported_material(const Scene& scene) {
+  for (std::uint32_t i = 0; i < scene.sphere_count(); ++i)
+    if (!C::material_model::supports(scene.surface(i).material)) return i;
+  return std::nullopt;
+}
+
 /// Throws UnsupportedSceneError, naming the sphere's line, if variant C cannot render the scene:
-/// a shading kind its SphereShading policy does not support, or what its estimator's execution
-/// model refuses (E::check_supported, where it has one: light tracing's black background).
+/// a shading kind its SphereShading policy does not support, a material its material model does
+/// not render, or what its estimator's execution model refuses (E::check_supported, where it has
+/// one: light tracing's black background).
 template <RenderConfig C>
 void check_supported(const Scene& scene) {
   using E = typename C::estimator::template execution<C>;
@@ -183,6 +192,12 @@ void check_supported(const Scene& scene) {
                                 "shading '" +
                                     std::string(to_string(scene.surface(*sphere).shading)) +
                                     "' is not supported by this renderer variant");
+  if (const std::optional<std::uint32_t> sphere = first_unsupported_material<C>(scene))
+    throw UnsupportedSceneError(
+        scene.source(), scene.sphere_line(*sphere),
+        "a rough or metal mirror (mirror_roughness, metal) is not supported by this renderer "
+        "variant's material model (" +
+            std::string(C::material_model::name) + ")");
 }
 
 /// Whether variant C can render the scene (check_supported would not throw).

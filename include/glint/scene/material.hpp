@@ -1,7 +1,9 @@
 #pragma once
 // The report's material: three lobes weighted by coefficients, each with its own colour, plus
 // emission. The coefficients say what fraction of the light each lobe takes; they are in [0, 1]
-// and sum to at most 1, so a material never creates energy.
+// and sum to at most 1, so a material never creates energy. Beyond the report, the mirror lobe
+// may be rough (a microfacet surface) and reflect as a metal does (a conductor's Fresnel
+// reflectance); a material model that has these (policy/material_model.hpp) renders them.
 
 #include <cstdint>
 #include <string_view>
@@ -44,11 +46,24 @@ struct Material {
   Color transparent_color{1.0f};
   float ior = 1.5f;      ///< refractive index inside the sphere; used when transparent > 0
   Color emission{0.0f};  ///< emitted radiance, both sides of the surface
+  /// Roughness of the mirror lobe in [0, 1]: the microfacet distribution's alpha is its square
+  /// (render/materials/microfacet.hpp); 0 is the ideal mirror.
+  float mirror_roughness = 0.0f;
+  /// The complex refractive index n + ik of a metal at the red, green and blue primaries, whose
+  /// Fresnel reflectance scales the mirror lobe; all zero (the default) for a reflectance of one.
+  Color metal_eta{0.0f};
+  Color metal_k{0.0f};
 
   bool is_transparent() const { return transparent > 0.0f; }
   /// The report applies Fresnel only to spheres with no user-defined diffusion or mirror.
   bool is_fully_transparent() const { return transparent == 1.0f; }
   bool is_emissive() const { return emission != Color(0.0f); }
+  /// The mirror lobe reflects with a metal's Fresnel reflectance.
+  bool is_metal() const { return metal_eta != Color(0.0f) || metal_k != Color(0.0f); }
+  /// The mirror lobe is more than the report's ideal mirror: rough, or a metal's.
+  bool has_mirror_finish() const {
+    return mirror > 0.0f && (mirror_roughness > 0.0f || is_metal());
+  }
 };
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE

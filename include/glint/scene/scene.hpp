@@ -40,7 +40,10 @@ struct SurfaceProperties {
   float ior_outside;  ///< index of the medium around the sphere, from the inclusion tree
   ShadingKind shading;
   bool fully_transparent;  ///< the report applies Fresnel to these spheres only
-  std::uint32_t emitter;   ///< index in Scene::emitters(), or kNotAnEmitter
+  /// The mirror lobe is rough or a metal's (Material::has_mirror_finish): shading reads the
+  /// material's roughness and metal index only where this is set.
+  bool mirror_finish;
+  std::uint32_t emitter;  ///< index in Scene::emitters(), or kNotAnEmitter
 };
 
 inline constexpr std::uint32_t kNotAnEmitter = std::numeric_limits<std::uint32_t>::max();
@@ -95,9 +98,9 @@ class Scene {
         emitter = static_cast<std::uint32_t>(emitters.size());
         emitters.push_back({sphere.center, sphere.radius, sphere.material.emission, id});
       }
-      scene.surfaces_.push_back(SurfaceProperties{sphere.material, sphere.center,
-                                                  tree.outside_ior[i], sphere.shading,
-                                                  sphere.material.is_fully_transparent(), emitter});
+      scene.surfaces_.push_back(SurfaceProperties{
+          sphere.material, sphere.center, tree.outside_ior[i], sphere.shading,
+          sphere.material.is_fully_transparent(), sphere.material.has_mirror_finish(), emitter});
       scene.sphere_lines_.push_back(sphere.line);
     }
     scene.hierarchy_ = SphereBvh(std::move(hierarchy_spheres));

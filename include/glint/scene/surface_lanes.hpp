@@ -30,16 +30,33 @@ struct SurfaceLanes {
   MaskFor<F> fully_transparent;
   IntFor<F> shading;   ///< the ShadingKind
   UIntFor<F> emitter;  ///< index in Scene::emitters(), or kNotAnEmitter
+  /// The mirror lobe's finish, read only for the lanes of `mirror_finish` (zero elsewhere).
+  MaskFor<F> mirror_finish;
+  F mirror_roughness;
+  V3 metal_eta;
+  V3 metal_k;
 };
 
 namespace detail {
 inline void set_surface_lane(SurfaceLanes<float>& to, int, const SurfaceProperties& s) {
   const Material& m = s.material;
-  to = {m.diffuse,      m.diffuse_color,     m.mirror,
-        m.mirror_color, m.transparent,       m.transparent_color,
-        m.ior,          m.emission,          s.center,
-        s.ior_outside,  s.fully_transparent, std::int32_t(s.shading),
-        s.emitter};
+  to = {m.diffuse,
+        m.diffuse_color,
+        m.mirror,
+        m.mirror_color,
+        m.transparent,
+        m.transparent_color,
+        m.ior,
+        m.emission,
+        s.center,
+        s.ior_outside,
+        s.fully_transparent,
+        std::int32_t(s.shading),
+        s.emitter,
+        s.mirror_finish,
+        s.mirror_finish ? m.mirror_roughness : 0.0f,
+        s.mirror_finish ? m.metal_eta : Color(0.0f),
+        s.mirror_finish ? m.metal_k : Color(0.0f)};
 }
 template <typename F>
 void set_surface_lane(SurfaceLanes<F>& to, int i, const SurfaceProperties& s) {
@@ -57,6 +74,12 @@ void set_surface_lane(SurfaceLanes<F>& to, int i, const SurfaceProperties& s) {
   to.fully_transparent[i] = s.fully_transparent ? -1 : 0;
   to.shading[i] = std::int32_t(s.shading);
   to.emitter[i] = s.emitter;
+  if (s.mirror_finish) {
+    to.mirror_finish[i] = -1;
+    to.mirror_roughness[i] = m.mirror_roughness;
+    to.metal_eta.set_lane(i, m.metal_eta);
+    to.metal_k.set_lane(i, m.metal_k);
+  }
 }
 }  // namespace detail
 
@@ -71,21 +94,26 @@ SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F
     if (lanes) detail::set_surface_lane(s, 0, scene.surface(sphere));
 #if defined(GLINT_AVX2)
   } else if constexpr (W == kLaneCount || W == kMaxColumnRows) {
-    // The 88 bytes of SurfaceProperties, read as 22 words: the material's seventeen floats, the
-    // centre, ior_outside, a word whose two low bytes are the shading kind and
-    // fully_transparent (and whose two high bytes are padding), and the emitter's index. They
-    // are loaded in three blocks of eight consecutive words (the last two overlapping) for all
-    // the lanes at once, transposed in registers.
-    constexpr int kRecordWords = 22;
+    // The 116 bytes of SurfaceProperties, read as 29 words: the material's sixteen floats of
+    // the report's lobes and seven of the mirror's finish, the centre, ior_outside, a word
+    // whose three low bytes are the shading kind, fully_transparent and mirror_finish (and whose
+    // high byte is padding), and the emitter's index. The report's words are loaded in three
+    // blocks of eight consecutive words (the first sixteen, and the last eight) for all the
+    // lanes at once, transposed in registers; the finish's block only where a lane has one.
+    constexpr int kRecordWords = 29;
     static_assert(offsetof(SurfaceProperties, material) == 0 && offsetof(Material, diffuse) == 0 &&
                   offsetof(Material, diffuse_color) == 4 && offsetof(Material, mirror) == 16 &&
                   offsetof(Material, mirror_color) == 20 && offsetof(Material, transparent) == 32 &&
                   offsetof(Material, transparent_color) == 36 && offsetof(Material, ior) == 48 &&
-                  offsetof(Material, emission) == 52 && offsetof(SurfaceProperties, center) == 64 &&
-                  offsetof(SurfaceProperties, ior_outside) == 76 &&
-                  offsetof(SurfaceProperties, shading) == 80 && sizeof(ShadingKind) == 1 &&
-                  offsetof(SurfaceProperties, fully_transparent) == 81 && sizeof(bool) == 1 &&
-                  offsetof(SurfaceProperties, emitter) == 84 &&
+                  offsetof(Material, emission) == 52 &&
+                  offsetof(Material, mirror_roughness) == 64 &&
+                  offsetof(Material, metal_eta) == 68 && offsetof(Material, metal_k) == 80 &&
+                  offsetof(SurfaceProperties, center) == 92 &&
+                  offsetof(SurfaceProperties, ior_outside) == 104 &&
+                  offsetof(SurfaceProperties, shading) == 108 && sizeof(ShadingKind) == 1 &&
+                  offsetof(SurfaceProperties, fully_transparent) == 109 && sizeof(bool) == 1 &&
+                  offsetof(SurfaceProperties, mirror_finish) == 110 &&
+                  offsetof(SurfaceProperties, emitter) == 112 &&
                   sizeof(SurfaceProperties) == kRecordWords * sizeof(float));
     static constexpr float kNoSurface[kRecordWords] = {};
     const float* record[W];
@@ -114,7 +142,18 @@ SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F
     const auto flags = std::bit_cast<IntFor<F>>(last[6]);
     s.shading = flags & 0xff;
     s.fully_transparent = (flags & 0xff00) != 0;
+    s.mirror_finish = (flags & 0xff0000) != 0;
     s.emitter = select(lanes, std::bit_cast<UIntFor<F>>(last[7]), splat<UIntFor<F>>(kNotAnEmitter));
+    if (any(s.mirror_finish)) {
+      F finish[kLaneCount];
+      load_block(16, finish);
+      const F zero = splat<F>(0.0f);
+      s.mirror_roughness = select(s.mirror_finish, finish[0], zero);
+      s.metal_eta = select(s.mirror_finish, Vector3<F>{finish[1], finish[2], finish[3]},
+                           Vector3<F>{zero, zero, zero});
+      s.metal_k = select(s.mirror_finish, Vector3<F>{finish[4], finish[5], finish[6]},
+                         Vector3<F>{zero, zero, zero});
+    }
   } else if constexpr (W == 2 * kLaneCount) {
     // Two transposes of eight.
     const SurfaceLanes<FloatLanes> low =
@@ -137,7 +176,11 @@ SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F
          both(low.ior_outside, high.ior_outside),
          both(low.fully_transparent, high.fully_transparent),
          both(low.shading, high.shading),
-         both(low.emitter, high.emitter)};
+         both(low.emitter, high.emitter),
+         both(low.mirror_finish, high.mirror_finish),
+         both(low.mirror_roughness, high.mirror_roughness),
+         both3(low.metal_eta, high.metal_eta),
+         both3(low.metal_k, high.metal_k)};
 #endif
   } else {
     for (int i = 0; i < W; ++i)

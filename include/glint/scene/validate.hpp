@@ -77,6 +77,22 @@ inline void check_material(const SceneDescription& scene, const Material& m, int
   if (!finite(m.emission) || !non_negative(m.emission))
     fail("emission must be finite and non-negative");
   if (!(m.ior >= 1e-3f && m.ior <= 100.0f)) fail("ior must be in [0.001, 100]");
+  if (!(m.mirror_roughness >= 0.0f && m.mirror_roughness <= 1.0f))
+    fail(concat({"mirror_roughness must be in [0, 1], got ", format_number(m.mirror_roughness)}));
+  if (m.mirror_roughness > 0.0f && !(m.mirror > 0.0f))
+    fail("mirror_roughness roughens the mirror lobe, which this material does not have (mirror=0)");
+  if (m.is_metal()) {
+    const auto within = [](const Vec3& v, float low, float high) {
+      for (int i = 0; i < 3; ++i)
+        if (!(v[i] >= low && v[i] <= high)) return false;
+      return true;
+    };
+    if (!within(m.metal_eta, 1e-3f, 100.0f)) fail("metal_eta components must be in [0.001, 100]");
+    if (!within(m.metal_k, 0.0f, 100.0f)) fail("metal_k components must be in [0, 100]");
+    if (!(m.mirror > 0.0f))
+      fail(
+          "a metal reflects through the mirror lobe, which this material does not have (mirror=0)");
+  }
 }
 
 inline void check_image(const SceneDescription& scene) {

@@ -161,7 +161,8 @@ class ReportMaterial {
   /// The probability that sample() chooses `lobe` (requires scatters()).
   F lobe_probability(Lobe lobe) const { return coefficient(lobe) / total_; }
 
- private:
+ protected:
+  // The lobes' pieces, for the models that extend this one (materials/microfacet_material.hpp).
   F coefficient(Lobe lobe) const {
     switch (lobe) {
       case Lobe::diffuse:

@@ -1,0 +1,114 @@
+#pragma once
+// A rough surface as a distribution of mirror microfacets: the Trowbridge-Reitz (GGX) normal
+// distribution with the Smith height-correlated masking-shadowing term (Heitz 2014,
+// "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs"), its visible normals
+// sampled on a spherical cap (Dupuy and Benyoub 2023, "Sampling Visible GGX Normals with
+// Spherical Caps"), and the reflectance of a conductor for the microfacets' Fresnel term.
+//
+// Directions are in the local frame of the macro-surface's normal on the side the light is on
+// (z up); everything is written once over a Float type (math/wide.hpp), with glint's own sin and
+// cos, so that a lane gives the same bits at every width.
+
+#include "glint/instruction_set.hpp"
+#include "glint/math/sampling.hpp"
+#include "glint/math/vector.hpp"
+#include "glint/math/wide.hpp"
+
+namespace glint::inline GLINT_ISA_NAMESPACE {
+
+/// The narrowest lobe modelled as microfacets: below this alpha the distribution's density
+/// (1 / (pi alpha^2) at its peak) and the cancellations in its denominator leave single precision,
+/// so such a surface reflects as the ideal mirror it nearly is (pbrt-v4 draws the same line).
+inline constexpr float kSmoothestMicrofacetAlpha = 1e-3f;
+
+/// A scene's roughness (in [0, 1]) as the distribution's alpha: its square, so that roughness
+/// reads about linearly in the look of a highlight.
+template <FloatType F>
+inline F microfacet_alpha(F roughness) {
+  return roughness * roughness;
+}
+
+/// Whether a lobe of this roughness is a microfacet lobe rather than the ideal one.
+inline bool is_microfacet_lobe(float roughness) {
+  return microfacet_alpha(roughness) >= kSmoothestMicrofacetAlpha;
+}
+
+/// The isotropic Trowbridge-Reitz distribution of width `alpha` (> 0) over a Float's lanes.
+template <FloatType F>
+struct TrowbridgeReitz {
+  using V3 = Vec3For<F>;
+  F alpha;
+
+  /// D(m): the density of microfacet normals m (unit, local) per unit solid angle and unit
+  /// macro-surface area, so that the integral of D(m) m.z over the hemisphere is one. Written
+  /// with m.x^2 + m.y^2 in place of 1 - m.z^2, which cancels for the narrow lobes.
+  F normal_density(const V3& m) const {
+    const F a2 = alpha * alpha;
+    const F t = (m.x * m.x + m.y * m.y) + a2 * (m.z * m.z);
+    return a2 / (kPi * (t * t));
+  }
+
+  /// Smith's Lambda(w) for a direction above the surface (w.z > 0).
+  F lambda(const V3& w) const {
+    const F z2 = w.z * w.z;
+    return 0.5f * (sqrt(z2 + (alpha * alpha) * (w.x * w.x + w.y * w.y)) / abs(w.z) - 1.0f);
+  }
+
+  /// The fraction of the microfacets facing w that w sees (G1).
+  F masking(const V3& w) const { return 1.0f / (1.0f + lambda(w)); }
+
+  /// The fraction seen from both directions, height-correlated (G2).
+  F masking_shadowing(const V3& wo, const V3& wi) const {
+    return 1.0f / ((1.0f + lambda(wo)) + lambda(wi));
+  }
+
+  /// A microfacet normal drawn from the normals visible from wo (wo.z > 0), with density
+  /// masking(wo) max(0, wo . m) normal_density(m) / wo.z per unit solid angle: wo is stretched
+  /// to the distribution of alpha one, where the visible normals are uniform on a spherical cap
+  /// around it, and the normal drawn there is unstretched.
+  V3 sample_visible_normal(const V3& wo, const Vec2For<F>& u) const {
+    const V3 stretched = normalize(V3{alpha * wo.x, alpha * wo.y, wo.z});
+    const F z = (1.0f - u.y) * (1.0f + stretched.z) - stretched.z;
+    const V3 cap = detail::around_z(u.x, sqrt(max(splat<F>(0.0f), 1.0f - z * z)), z);
+    const V3 h = cap + stretched;
+    return normalize(V3{alpha * h.x, alpha * h.y, max(splat<F>(0.0f), h.z)});
+  }
+
+  /// The density per unit solid angle of the reflected direction wi when the normal is drawn by
+  /// sample_visible_normal from wo: masking(wo) D(m) / (4 wo.z), m the half vector.
+  F reflection_pdf(const V3& wo, const V3& m) const {
+    return masking(wo) * normal_density(m) / (4.0f * wo.z);
+  }
+};
+
+namespace detail {
+/// The unpolarised Fresnel reflectance of a conductor of complex relative index eta + i k for a
+/// cosine `c` in [0, 1] on the incident side: the mean of the s and p reflectances in the closed
+/// form of the complex Snell's law (as in Born and Wolf), one colour channel.
+template <FloatType F>
+inline F conductor_reflectance(F c, F eta, F k) {
+  const F c2 = c * c;
+  const F s2 = 1.0f - c2;
+  const F t0 = eta * eta - k * k - s2;
+  const F a2b2 = sqrt(max(splat<F>(0.0f), t0 * t0 + 4.0f * (eta * eta) * (k * k)));
+  const F a = sqrt(max(splat<F>(0.0f), 0.5f * (a2b2 + t0)));
+  const F t1 = a2b2 + c2;
+  const F t2 = 2.0f * c * a;
+  const F rs = (t1 - t2) / (t1 + t2);
+  const F t3 = c2 * a2b2 + s2 * s2;
+  const F t4 = t2 * s2;
+  const F rp = rs * (t3 - t4) / (t3 + t4);
+  return 0.5f * (rs + rp);
+}
+}  // namespace detail
+
+/// The Fresnel reflectance of a conductor of complex relative index eta + i k, per colour
+/// channel, at cosine `c` between the incident direction and the (micro)surface normal.
+template <typename V3>
+inline V3 conductor_reflectance(FloatOf<V3> c, const V3& eta, const V3& k) {
+  return V3{detail::conductor_reflectance(c, eta.x, k.x),
+            detail::conductor_reflectance(c, eta.y, k.y),
+            detail::conductor_reflectance(c, eta.z, k.z)};
+}
+
+}  // namespace glint::inline GLINT_ISA_NAMESPACE
