@@ -508,5 +508,17 @@ if(TARGET glint-custom-shading)
                  OUTPUT striped.png ARGS ${glint_striped_scene} striped.png 2)
 endif()
 
+# A rough or metal mirror is refused by a variant with the report's material only, naming the
+# sphere's line; the default renders it.
+set(glint_metals_scene ${PROJECT_SOURCE_DIR}/bench/scenes/metals.scene)
+if(TARGET glint-render-report)
+  glint_cli_test(unsupported-rough-metal PROGRAM glint-render-report STATUS 3
+                 STDERR "metals.scene:[0-9]+: error: a rough or metal mirror .mirror_roughness, metal. is not supported"
+                 ARGS ${glint_metals_scene} -o out.png OUTPUT out.png)
+endif()
+glint_cli_test(rough-metal-renders STATUS 0 EXPECT_OUTPUT OUTPUT out.png
+               STDERR "glint-render .fast,"
+               ARGS ${glint_metals_scene} --width 24 --height 16 --spp 2 -o out.png)
+
 # glint-random-scene's output file.
 include(${CMAKE_CURRENT_LIST_DIR}/random_scene_test.cmake)
