@@ -135,6 +135,21 @@ TEST_CASE("conductor reflectance: the closed forms at normal and grazing inciden
       CHECK(r <= 1.0f + 1e-6f);
     }
   }
+  // The named metals head-on, as docs/scene-format.md lists them.
+  const struct {
+    const char* name;
+    Color reflectance;
+  } listed[] = {{"gold", Color(0.97f, 0.80f, 0.32f)},
+                {"silver", Color(0.97f, 0.96f, 0.91f)},
+                {"copper", Color(0.95f, 0.62f, 0.51f)},
+                {"aluminium", Color(0.93f, 0.92f, 0.92f)}};
+  for (const auto& metal : listed) {
+    const glint::Metal known = *glint::metal_named(metal.name);
+    const Color r = glint::conductor_reflectance(1.0f, known.eta, known.k);
+    INFO(metal.name);
+    for (int c = 0; c < 3; ++c)
+      CHECK(r[c] == Approx(metal.reflectance[c]).margin(0.005));
+  }
   // Gold reflects red most and blue least; silver is nearly white.
   const glint::Metal gold = *glint::metal_named("gold");
   const Color g = glint::conductor_reflectance(1.0f, gold.eta, gold.k);
