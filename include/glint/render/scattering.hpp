@@ -76,6 +76,14 @@ Refraction<V3> refract(const V3& direction, const BasicInterface<V3>& at, FloatO
 
 }  // namespace detail
 
+/// The unit outward normal at `point` of a sphere centred at `center`: the hit's, and whatever
+/// rebuilds it later from the point (a bounce's MIS weight), in one expression, so that they
+/// agree to the bit.
+template <typename V3>
+V3 outward_normal_at(const V3& point, const V3& center) {
+  return normalize(point - center);
+}
+
 /// Where a Float's lanes of rays met the scene, with everything shading needs there: the
 /// geometry, the spheres' properties and the side each ray came from.
 template <typename F>
@@ -94,7 +102,7 @@ struct BasicSurfaceInteraction {
     it.sphere = sphere;
     it.surface = gather_surfaces<F>(scene, sphere, lanes);
     it.point = origin + t * direction;
-    it.outward_normal = normalize(it.point - it.surface.center);
+    it.outward_normal = outward_normal_at(it.point, it.surface.center);
     it.at = detail::interface_at(direction, it.outward_normal);
     return it;
   }

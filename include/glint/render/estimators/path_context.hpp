@@ -232,9 +232,8 @@ class PathContext {
     const SphereLight emitter(scene_.emitters()[index]);
     // The bounce that has a density is a reflection, so it left on the side the path arrived
     // from: the light sample at its origin saw the same point, normal and side, rebuilt here as
-    // the hit computed them (BasicSurfaceInteraction::at_hit), and so chose with the same
-    // probability, to the bit.
-    const Vec3 outward = normalize(origin - scene_.surface(origin_sphere).center);
+    // the hit computed them, and so chose with the same probability, to the bit.
+    const Vec3 outward = outward_normal_at(origin, scene_.surface(origin_sphere).center);
     const EmitterChoicePoint<float> at{origin, heads_into_origin_sphere ? -outward : outward,
                                        origin_sphere, heads_into_origin_sphere};
     // The ray started on its origin sphere; if that is the emitter it hit, it left it inwards

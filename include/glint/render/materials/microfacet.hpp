@@ -28,8 +28,9 @@ inline F microfacet_alpha(F roughness) {
   return roughness * roughness;
 }
 
-/// Whether a lobe of this roughness is a microfacet lobe rather than the ideal one.
-inline bool is_microfacet_lobe(float roughness) {
+/// Whether a lobe of this roughness is a microfacet lobe rather than the ideal one, lane by lane.
+template <FloatType F>
+inline MaskFor<F> is_microfacet_lobe(F roughness) {
   return microfacet_alpha(roughness) >= kSmoothestMicrofacetAlpha;
 }
 
@@ -57,11 +58,6 @@ struct TrowbridgeReitz {
   /// The fraction of the microfacets facing w that w sees (G1).
   F masking(const V3& w) const { return 1.0f / (1.0f + lambda(w)); }
 
-  /// The fraction seen from both directions, height-correlated (G2).
-  F masking_shadowing(const V3& wo, const V3& wi) const {
-    return 1.0f / ((1.0f + lambda(wo)) + lambda(wi));
-  }
-
   /// A microfacet normal drawn from the normals visible from wo (wo.z > 0), with density
   /// masking(wo) max(0, wo . m) normal_density(m) / wo.z per unit solid angle: wo is stretched
   /// to the distribution of alpha one, where the visible normals are uniform on a spherical cap
@@ -73,13 +69,33 @@ struct TrowbridgeReitz {
     const V3 h = cap + stretched;
     return normalize(V3{alpha * h.x, alpha * h.y, max(splat<F>(0.0f), h.z)});
   }
-
-  /// The density per unit solid angle of the reflected direction wi when the normal is drawn by
-  /// sample_visible_normal from wo: masking(wo) D(m) / (4 wo.z), m the half vector.
-  F reflection_pdf(const V3& wo, const V3& m) const {
-    return masking(wo) * normal_density(m) / (4.0f * wo.z);
-  }
 };
+
+/// A reflection by a TrowbridgeReitz mirror from wo to wi (both unit, local, z up), without
+/// Fresnel: its half vector, f cos(wi) = D G2 / (4 wo.z) with the height-correlated
+/// G2 = 1 / (1 + Lambda(wo) + Lambda(wi)), and the density with which
+/// sample_visible_normal reflects wo to wi, G1(wo) D / (4 wo.z); `above` where both directions
+/// are above the surface (elsewhere the values are unspecified: the lobe has none there).
+template <FloatType F>
+struct MicrofacetReflection {
+  Vec3For<F> half;
+  F f_cos;
+  F pdf;
+  MaskFor<F> above;
+};
+
+/// The reflection from wo to wi by `d`, given 1 + Lambda(wo) (`masking_o`, which a material
+/// computes once per hit).
+template <FloatType F>
+inline MicrofacetReflection<F> microfacet_reflection(const TrowbridgeReitz<F>& d,
+                                                     const Vec3For<F>& wo, F masking_o,
+                                                     const Vec3For<F>& wi) {
+  const Vec3For<F> half = normalize(wo + wi);
+  const F density = d.normal_density(half);
+  const F four_cos_o = 4.0f * wo.z;
+  return {half, density / (four_cos_o * (masking_o + d.lambda(wi))),
+          density / (four_cos_o * masking_o), wo.z > 0.0f && wi.z > 0.0f};
+}
 
 namespace detail {
 /// The unpolarised Fresnel reflectance of a conductor of complex relative index eta + i k for a

@@ -42,7 +42,7 @@ class MicrofacetMaterial : private ReportMaterial<C, F> {
   MicrofacetMaterial(const BasicSurfaceInteraction<F>& interaction, const V3& incoming,
                      M lanes = mask_of<M>(true))
       : Ideal(interaction, incoming, lanes),
-        finished_(lanes && s_.mirror_finish && s_.mirror > 0.0f),
+        finished_(lanes && s_.mirror_finish),
         glossy_(mask_of<M>(false)),
         metal_(mask_of<M>(false)),
         distribution_{splat<F>(1.0f)},
@@ -52,9 +52,8 @@ class MicrofacetMaterial : private ReportMaterial<C, F> {
         eta_(splat_vector<V3>(Color(1.0f))),
         k_(splat_vector<V3>(Color(0.0f))) {
     if (!any(finished_)) return;
-    const F alpha = microfacet_alpha(s_.mirror_roughness);
-    glossy_ = finished_ && alpha >= kSmoothestMicrofacetAlpha;
-    distribution_.alpha = select(glossy_, alpha, splat<F>(1.0f));
+    glossy_ = finished_ && is_microfacet_lobe(s_.mirror_roughness);
+    distribution_.alpha = select(glossy_, microfacet_alpha(s_.mirror_roughness), splat<F>(1.0f));
     frame_ = BasicFrame<V3>::around(at_.facing_normal);
     const V3 away = -incoming_;
     wo_ = V3{dot(away, frame_.tangent), dot(away, frame_.bitangent), at_.cos_incident};
@@ -86,43 +85,38 @@ class MicrofacetMaterial : private ReportMaterial<C, F> {
     bool has_density() const { return diffuse.has_density() || glossy; }
     Color f(const Vec3& facing, const Vec3& wo, const Vec3& wi) const {
       Color value = diffuse.f(facing, wo, wi);
-      if (glossy) value += glossy_f(facing, wo, wi);
+      if (glossy) {
+        const Local l = local(facing, wo, wi);
+        if (l.reflection.above) value += fresnel(l) * (l.reflection.f_cos / l.wi.z);
+      }
       return value;
     }
     float pdf(const Vec3& facing, const Vec3& wo, const Vec3& wi) const {
       float density = diffuse.pdf(facing, wo, wi);
-      if (glossy) density += glossy_choice * glossy_pdf(facing, wo, wi);
+      if (glossy) {
+        const Local l = local(facing, wo, wi);
+        if (l.reflection.above) density += glossy_choice * l.reflection.pdf;
+      }
       return density;
     }
 
    private:
     struct Local {
-      Vec3 wo, wi, half;
-      bool valid;
+      Vec3 wo, wi;
+      MicrofacetReflection<float> reflection;
     };
-    static Local local(const Vec3& facing, const Vec3& wo, const Vec3& wi) {
+    Local local(const Vec3& facing, const Vec3& wo, const Vec3& wi) const {
       const Frame frame = Frame::around(facing);
       const Vec3 o{glm::dot(wo, frame.tangent), glm::dot(wo, frame.bitangent),
                    glm::dot(wo, facing)};
       const Vec3 i{glm::dot(wi, frame.tangent), glm::dot(wi, frame.bitangent),
                    glm::dot(wi, facing)};
-      const bool valid = o.z > 0.0f && i.z > 0.0f;
-      return {o, i, valid ? glm::normalize(o + i) : Vec3(0.0f, 0.0f, 1.0f), valid};
-    }
-    Color glossy_f(const Vec3& facing, const Vec3& wo, const Vec3& wi) const {
-      const Local l = local(facing, wo, wi);
-      if (!l.valid) return Color(0.0f);
       const TrowbridgeReitz<float> d{alpha};
-      const Color fresnel =
-          metal ? conductor_reflectance(glm::dot(l.wo, l.half), eta, k) : Color(1.0f);
-      return tint * fresnel *
-             (d.normal_density(l.half) * d.masking_shadowing(l.wo, l.wi) /
-              (4.0f * l.wo.z * l.wi.z));
+      return {o, i, microfacet_reflection(d, o, 1.0f + d.lambda(o), i)};
     }
-    float glossy_pdf(const Vec3& facing, const Vec3& wo, const Vec3& wi) const {
-      const Local l = local(facing, wo, wi);
-      if (!l.valid) return 0.0f;
-      return TrowbridgeReitz<float>{alpha}.reflection_pdf(l.wo, l.half);
+    /// The mirror's tint times the metal's reflectance for the reflection `l`.
+    Color fresnel(const Local& l) const {
+      return metal ? tint * conductor_reflectance(glm::dot(l.wo, l.reflection.half), eta, k) : tint;
     }
   };
   template <Transport mode>
@@ -164,8 +158,9 @@ class MicrofacetMaterial : private ReportMaterial<C, F> {
       const V3 half = distribution_.sample_visible_normal(wo_, u);
       const F cos_half = dot(wo_, half);
       const V3 wi = (2.0f * cos_half) * half - wo_;
+      const MicrofacetReflection<F> r = microfacet_reflection(distribution_, wo_, masking_o_, wi);
       // (A ray that grazes the sphere, wo.z = 0, sees no microfacet: it carries nothing on.)
-      const M above = rough && wi.z > 0.0f && wo_.z > 0.0f;
+      const M above = rough && r.above;
       V3 tint = s_.mirror_color;
       if (any(metal_ && rough))
         tint = select(metal_, tint * conductor_reflectance(cos_half, eta_, k_), tint);
@@ -177,9 +172,8 @@ class MicrofacetMaterial : private ReportMaterial<C, F> {
       s.tint = select(rough, select(above, tint, splat_vector<V3>(Color(0.0f))), s.tint);
       s.factor = select(rough, select(above, total_ * weight, splat<F>(0.0f)), s.factor);
       s.delta = select(rough, !above, s.delta);
-      // The density of every lobe that has one, from the normal drawn (as pdf() would find it).
-      const F glossy = (s_.mirror / total_) * glossy_pdf(half);
-      s.pdf = select(above, Ideal::pdf(s.direction) + glossy, s.pdf);
+      // The density of every lobe that has one, as pdf() finds it.
+      s.pdf = select(above, Ideal::pdf(s.direction) + (s_.mirror / total_) * r.pdf, s.pdf);
     }
     // A diffuse direction gets the rough mirror's density there too.
     const M diffuse = lanes && !s.delta && glossy_ && !rough;
@@ -193,17 +187,13 @@ class MicrofacetMaterial : private ReportMaterial<C, F> {
   V3 evaluate(const V3& direction) const {
     V3 value = Ideal::template evaluate<mode>(direction);
     if (!any(glossy_)) return value;
-    const V3 wi = local(direction);
-    const M above = glossy_ && wi.z > 0.0f && wo_.z > 0.0f;
+    const MicrofacetReflection<F> r = reflection(direction);
+    const M above = glossy_ && r.above;
     if (!any(above)) return value;
-    const V3 half = normalize(wo_ + wi);
     V3 tint = s_.mirror * s_.mirror_color;
     if (any(metal_ && above))
-      tint = select(metal_, tint * conductor_reflectance(dot(wo_, half), eta_, k_), tint);
-    // f cos = F D G2 / (4 wo.z), G2 = 1 / (1 + Lambda(wo) + Lambda(wi)).
-    const F f_cos = distribution_.normal_density(half) /
-                    ((4.0f * wo_.z) * (masking_o_ + distribution_.lambda(wi)));
-    return select(above, value + tint * f_cos, value);
+      tint = select(metal_, tint * conductor_reflectance(dot(wo_, r.half), eta_, k_), tint);
+    return select(above, value + tint * r.f_cos, value);
   }
 
   /// Density of sample() producing `direction` through the lobes with a density (requires
@@ -211,23 +201,18 @@ class MicrofacetMaterial : private ReportMaterial<C, F> {
   F pdf(const V3& direction) const {
     F density = Ideal::pdf(direction);
     if (!any(glossy_)) return density;
-    const V3 wi = local(direction);
-    const M above = glossy_ && wi.z > 0.0f && wo_.z > 0.0f;
+    const MicrofacetReflection<F> r = reflection(direction);
+    const M above = glossy_ && r.above;
     if (!any(above)) return density;
-    const F glossy = (s_.mirror / total_) * glossy_pdf(normalize(wo_ + wi));
-    return select(above, density + glossy, density);
+    return select(above, density + (s_.mirror / total_) * r.pdf, density);
   }
 
  private:
-  /// The density of the rough mirror's reflection whose half vector is `half`: G1(wo) D / (4 wo.z)
-  /// (TrowbridgeReitz::reflection_pdf, with this hit's G1).
-  F glossy_pdf(const V3& half) const {
-    return distribution_.normal_density(half) / ((4.0f * wo_.z) * masking_o_);
-  }
-
-  V3 local(const V3& direction) const {
-    return V3{dot(direction, frame_.tangent), dot(direction, frame_.bitangent),
-              dot(direction, frame_.normal)};
+  /// The rough mirror's reflection from wo_ to world `direction`.
+  MicrofacetReflection<F> reflection(const V3& direction) const {
+    const V3 wi{dot(direction, frame_.tangent), dot(direction, frame_.bitangent),
+                dot(direction, frame_.normal)};
+    return microfacet_reflection(distribution_, wo_, masking_o_, wi);
   }
 
   M finished_;  // a mirror lobe with a finish: rough, or a metal's
