@@ -418,36 +418,29 @@ enum MirrorKind {
   kRoughGold = 4,
 };
 
-/// Hits on a unit sphere's top from directions spread over the hemisphere, each with a light
-/// direction above the surface, the sphere a mirror of the kind.
-struct MirrorInputs {
+/// Hits on a unit sphere's top (in air) of material `m`: from directions spread over the
+/// hemisphere above, each with a light direction above the surface, or, `both_sides`, over the
+/// whole sphere (half of them from inside) with light directions anywhere.
+struct LobeInputs {
   glint::SurfaceProperties surface;
   std::vector<glint::SurfaceInteraction> hits;
   std::vector<Vec3> incoming, lights;
-  explicit MirrorInputs(MirrorKind kind) : hits(kInputs), incoming(kInputs), lights(kInputs) {
-    glint::Material m;
-    m.diffuse = 0.0f;
-    m.mirror = 1.0f;
-    if (kind == kSmoothGold || kind == kRoughGold) {
-      const glint::Metal gold = *glint::metal_named("gold");
-      m.metal_eta = gold.eta;
-      m.metal_k = gold.k;
-    }
-    if (kind == kRoughMirror || kind == kRoughGold) m.mirror_roughness = 0.4f;
+  LobeInputs(const glint::Material& m, bool both_sides)
+      : hits(kInputs), incoming(kInputs), lights(kInputs) {
     surface = {m,
                Vec3(0.0f),
                1.0f,
                glint::ShadingKind::uniform,
-               false,
+               m.is_fully_transparent(),
                m.has_mirror_finish(),
                glint::kNotAnEmitter};
     glint::Pcg32 rng(6, 6);
     const Vec3 normal(0.0f, 0.0f, 1.0f);
     for (std::size_t i = 0; i < kInputs; ++i) {
       Vec3 d = random_unit_vector(rng);
-      incoming[i] = d.z > 0.0f ? -d : d;
+      incoming[i] = d.z > 0.0f && !both_sides ? -d : d;
       const Vec3 l = random_unit_vector(rng);
-      lights[i] = l.z < 0.0f ? -l : l;
+      lights[i] = l.z < 0.0f && !both_sides ? -l : l;
       glint::SurfaceInteraction& it = hits[i];
       it.point = normal;
       it.outward_normal = normal;
@@ -458,6 +451,19 @@ struct MirrorInputs {
   }
 };
 
+glint::Material mirror_of_kind(MirrorKind kind) {
+  glint::Material m;
+  m.diffuse = 0.0f;
+  m.mirror = 1.0f;
+  if (kind == kSmoothGold || kind == kRoughGold) {
+    const glint::Metal gold = *glint::metal_named("gold");
+    m.metal_eta = gold.eta;
+    m.metal_k = gold.k;
+  }
+  if (kind == kRoughMirror || kind == kRoughGold) m.mirror_roughness = 0.4f;
+  return m;
+}
+
 using MirrorConfig =
     glint::Config<glint::IndependentSampler, glint::PathTracing, glint::ExactFresnel,
                   glint::GaussianAntialiasing, glint::BuiltinShading, glint::CosineHemisphere,
@@ -466,7 +472,7 @@ using MirrorConfig =
 /// A hit's material built, a direction sampled, and a light direction's value and density: the
 /// material's share of a path's step.
 template <typename B>
-void run_mirror_lobe(benchmark::State& state, const MirrorInputs& in) {
+void run_material_lobe(benchmark::State& state, const LobeInputs& in) {
   glint::IndependentSampler sampler;
   sampler.start({1u, 1u, 0u, 1u, 1u});
   std::size_t i = 0;
@@ -482,15 +488,40 @@ void run_mirror_lobe(benchmark::State& state, const MirrorInputs& in) {
 }
 void BM_MirrorLobe(benchmark::State& state) {
   const auto kind = static_cast<MirrorKind>(state.range(0));
-  const MirrorInputs in(kind);
+  const LobeInputs in(mirror_of_kind(kind), false);
   if (kind == kReportMirror)
-    run_mirror_lobe<glint::ReportMaterial<MirrorConfig, float>>(state, in);
+    run_material_lobe<glint::ReportMaterial<MirrorConfig, float>>(state, in);
   else
-    run_mirror_lobe<glint::MicrofacetMaterial<MirrorConfig, float>>(state, in);
+    run_material_lobe<glint::MicrofacetMaterial<MirrorConfig, float>>(state, in);
 }
 // 0 the report's mirror, 1 the same through the microfacet material, 2 polished gold, 3 a rough
 // mirror (roughness 0.4), 4 rough gold.
 BENCHMARK(BM_MirrorLobe)->ArgName("kind")->DenseRange(0, 4);
+
+// ---------------------------------------------------------------------------------------------
+// Glass lobes: what a rough interface costs a hit against the ideal one
+
+enum GlassKind {
+  kReportGlass = 0,  // the report's material (ReportMaterial)
+  kIdealGlass = 1,   // the same glass through the microfacet material
+  kRoughGlass = 2,   // transparent_roughness 0.3
+};
+
+void BM_GlassLobe(benchmark::State& state) {
+  const auto kind = static_cast<GlassKind>(state.range(0));
+  glint::Material m;
+  m.diffuse = 0.0f;
+  m.transparent = 1.0f;
+  if (kind == kRoughGlass) m.transparent_roughness = 0.3f;
+  const LobeInputs in(m, true);
+  if (kind == kReportGlass)
+    run_material_lobe<glint::ReportMaterial<MirrorConfig, float>>(state, in);
+  else
+    run_material_lobe<glint::MicrofacetMaterial<MirrorConfig, float>>(state, in);
+}
+// 0 the report's glass (index 1.5, from both sides), 1 the same through the microfacet material,
+// 2 frosted glass (roughness 0.3).
+BENCHMARK(BM_GlassLobe)->ArgName("kind")->DenseRange(0, 2);
 
 // ---------------------------------------------------------------------------------------------
 // Inclusion tree

@@ -51,7 +51,7 @@ struct fast : Config<HybridSobolSampler<6>, PathTracing, ExactFresnel, GaussianA
                                     "Sobol' for the first 6 requests, one lobe per bounce, cosine "
                                     "bounces, Russian roulette, emitter sampling with MIS, "
                                     "emitters chosen by their light at the point, rough and "
-                                    "metal mirrors",
+                                    "metal mirrors, rough glass",
                                     kSameImage};
 };
 
@@ -115,7 +115,8 @@ struct fast_emitters_by_power
 struct fast_ideal_mirrors : fast::with_material_model<ReportMaterialModel> {
   static constexpr VariantInfo info{
       "fast_ideal_mirrors",
-      "`fast` with the report's material only (rejects scenes with rough or metal mirrors)",
+      "`fast` with the report's material only (rejects scenes with rough or metal mirrors or "
+      "rough glass)",
       kSameImage};
 };
 /// The estimator that finds a point light's light through glass: `fast`'s policies, followed

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/dielectric_fresnel.hpp"
 #include "block_statistics.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/io/scene_reader.hpp"
@@ -38,15 +39,7 @@ sphere    center=0,-100000,0 radius=1e5 color=0.5,0.5,0.5
 sphere    center=0,3,0 radius=1 diffuse=0 transparent=1 ior=1.5
 )";
 
-/// Exact dielectric reflectance for unpolarised light, written out here.
-inline double fresnel(double cos_i, double eta_i, double eta_t) {
-  const double sin_t = eta_i / eta_t * std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i));
-  if (sin_t >= 1.0) return 1.0;
-  const double cos_t = std::sqrt(1.0 - sin_t * sin_t);
-  const double rs = (eta_i * cos_i - eta_t * cos_t) / (eta_i * cos_i + eta_t * cos_t);
-  const double rp = (eta_t * cos_i - eta_i * cos_t) / (eta_t * cos_i + eta_i * cos_t);
-  return 0.5 * (rs * rs + rp * rp);
-}
+using glint_test::dielectric_fresnel;
 
 struct D3 {
   double x, y, z;
@@ -95,7 +88,7 @@ class FloorIrradiance {
       const D3 p = light + t * dir;
       const D3 n = unit(p - center);
       const double cos_i = -dot(dir, n);
-      const double reflect = fresnel(cos_i, 1.0, kIor);
+      const double reflect = dielectric_fresnel(cos_i, 1.0, kIor);
       land(p, dir + (2.0 * cos_i) * n, power * reflect);
       const D3 in = refract(dir, n, cos_i, 1.0 / kIor);
       // Exit.
@@ -103,7 +96,7 @@ class FloorIrradiance {
       const D3 q = p + t * in;
       const D3 m = unit(center - q);  // the normal facing the ray, inside
       const double cos_j = -dot(in, m);
-      const double exit_reflect = fresnel(cos_j, kIor, 1.0);
+      const double exit_reflect = dielectric_fresnel(cos_j, kIor, 1.0);
       if (exit_reflect >= 1.0) continue;
       land(q, refract(in, m, cos_j, kIor), power * (1.0 - reflect) * (1.0 - exit_reflect));
     }

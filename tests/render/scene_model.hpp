@@ -25,6 +25,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "../support/dielectric_fresnel.hpp"
 #include "glint/scene/scene_description.hpp"
 
 namespace glint::test {
@@ -270,7 +271,7 @@ class SceneModel {
       } else {
         through = radiance(hit->point, *refracted, depth + 1, max_depth, options, key);
         if (through && options.fresnel && m.transparent == 1.0f) {
-          const double f = fresnel(-glm::dot(direction, facing), n1, n2);
+          const double f = glint_test::dielectric_fresnel(-glm::dot(direction, facing), n1, n2);
           const std::optional<Moments> reflected =
               radiance(hit->point, reflect(direction, facing), depth + 1, max_depth, options, key);
           if (!reflected) return std::nullopt;
@@ -348,16 +349,6 @@ class SceneModel {
     const double sin2_t = eta * eta * (1.0 - cos_i * cos_i);
     if (sin2_t >= 1.0) return std::nullopt;
     return glm::normalize(eta * direction + (eta * cos_i - std::sqrt(1.0 - sin2_t)) * facing);
-  }
-
-  /// Unpolarised Fresnel reflectance (the mean of the s and p reflectances).
-  static double fresnel(double cos_i, double n1, double n2) {
-    const double sin2_t = (n1 / n2) * (n1 / n2) * (1.0 - cos_i * cos_i);
-    if (sin2_t >= 1.0) return 1.0;
-    const double cos_t = std::sqrt(1.0 - sin2_t);
-    const double rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
-    const double rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i);
-    return 0.5 * (rs * rs + rp * rp);
   }
 
  private:

@@ -107,6 +107,16 @@ inline double zero_mean_p_value(const MeanEstimate& difference, double rounding)
   return student_t_two_sided(excess / difference.standard_error, difference.degrees_of_freedom);
 }
 
+/// One-sided p-value of the test that values (differences from a bound) have expectation at most
+/// zero: evidence only of an expectation above the bound by more than `rounding`.
+inline double above_zero_p_value(const MeanEstimate& difference, double rounding) {
+  const double excess = std::max(0.0, difference.mean - rounding);
+  if (excess == 0.0) return 1.0;
+  if (difference.standard_error == 0.0) return 0.0;
+  return 0.5 *
+         student_t_two_sided(excess / difference.standard_error, difference.degrees_of_freedom);
+}
+
 /// The comparisons of one statistical test case, judged together by Holm's step-down procedure
 /// at kFamilyFalseAlarm: sorted by p-value, the i-th smallest (from 0) of m fails when it and
 /// every smaller one are below kFamilyFalseAlarm / (m - i).

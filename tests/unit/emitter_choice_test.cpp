@@ -173,6 +173,26 @@ TEST_CASE("emitter choice: by contribution, the point's own lamp and lamps aroun
   CHECK(Choice::estimate(table, 0, within) == 2.0f);
 }
 
+TEST_CASE("emitter choice: by contribution, a two-sided point weighs lamps on either side",
+          "[emitters][unit]") {
+  // A lamp below the tangent plane gets nothing at a one-sided point facing up, and at a
+  // two-sided point what it would get above: the estimate with |h| for h, whichever way the
+  // normal points.
+  const EmitterTable table({{Vec3(0.0f, 0.0f, -6.0f), 1.0f, Color(3.0f), 0u},
+                            {Vec3(4.0f, 0.0f, 3.0f), 1.0f, Color(3.0f), 1u}});
+  const Vec3 up(0.0f, 0.0f, 1.0f);
+  const EmitterChoicePoint<float> one_sided{Vec3(0.0f), up, kFloorSphere, false};
+  CHECK(Choice::estimate(table, 0, one_sided) == 0.0f);
+  const EmitterChoicePoint<float> mirrored_lamp_above{Vec3(0.0f), -up, kFloorSphere, false};
+  const float above = Choice::estimate(table, 0, mirrored_lamp_above);
+  CHECK(above == Approx(3.0 * (1.0 / 36.0)).epsilon(1e-6));  // straight over: L (r/d)^2
+  for (const Vec3& normal : {up, -up}) {
+    const EmitterChoicePoint<float> two_sided{Vec3(0.0f), normal, kFloorSphere, false, true};
+    CHECK(Choice::estimate(table, 0, two_sided) == above);
+    CHECK(Choice::estimate(table, 1, two_sided) == Choice::estimate(table, 1, one_sided));
+  }
+}
+
 TEST_CASE("emitter choice: by contribution, lamps weigh radiance times (r/d)^2 times elevation",
           "[emitters][unit]") {
   // Straight above, the estimate is the mean radiance times (r/d)^2, the solid angle of a small

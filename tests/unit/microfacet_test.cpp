@@ -43,10 +43,7 @@ static_assert(!glint::LobewiseBsdf<Bsdf, float, Config::sampler>);
 constexpr double kPi = std::numbers::pi;
 
 /// The top of a unit sphere reached along `incoming`, with its Bsdf.
-struct TopHit : glint::test::TopOfSphere {
-  TopHit(const Material& material, const Vec3& incoming) : TopOfSphere(material, incoming) {}
-  Bsdf bsdf(const Vec3& incoming) const { return Bsdf(interaction, incoming); }
-};
+using TopHit = glint::test::TopOfSphereWith<Bsdf>;
 
 Material rough_mirror(float roughness, Color tint = Color(1.0f)) {
   Material m;
@@ -174,23 +171,9 @@ TEST_CASE("conductor reflectance with k = 0 is a dielectric's", "[microfacet][fr
 /// rough samples reflected below the surface, which carry nothing) in one more cell.
 template <Transport mode>
 glint::test::ChiSquare sampling_against_pdf(const Bsdf& bsdf, int n, std::uint32_t seed) {
-  std::vector<double> observed(glint::test::kCells + 1, 0.0);
-  std::vector<double> expected(glint::test::kCells + 1, 0.0);
   auto sampler = sampler_for(seed);
-  for (int i = 0; i < n; ++i) {
-    const ScatterSample s = bsdf.sample<mode>(sampler);
-    ++observed[s.delta ? std::size_t(glint::test::kCells)
-                       : std::size_t(glint::test::cell_of(s.direction))];
-  }
-  const std::vector<double> mass =
-      glint::test::cell_masses([&](const Vec3& direction) { return bsdf.pdf(direction); });
-  double total = 0.0;
-  for (int c = 0; c < glint::test::kCells; ++c) {
-    expected[std::size_t(c)] = n * mass[std::size_t(c)];
-    total += mass[std::size_t(c)];
-  }
-  expected[glint::test::kCells] = n * std::max(0.0, 1.0 - total);
-  return glint::test::chi_square_pooled(observed, expected);
+  return glint::test::sampling_against_density([&] { return bsdf.sample<mode>(sampler); },
+                                               [&](const Vec3& d) { return bsdf.pdf(d); }, n);
 }
 
 TEST_CASE("rough mirrors and metals: samples follow the pdf", "[microfacet][scattering]") {

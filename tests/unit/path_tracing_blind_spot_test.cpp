@@ -61,6 +61,23 @@ TEST_CASE("what the path tracer sees all of", "[blind_spot]") {
       blind_spot("light position=0,20,0 intensity=100\n"
                  "sphere center=0,0,0 radius=3 metal=gold mirror_roughness=0.2\n"
                  "sphere center=0,-1000,0 radius=990 color=0.8,0.8,0.8\n"));
+  // Rough glass too, from both sides: light is sampled through it from inside the ball.
+  CHECK_FALSE(
+      blind_spot("light position=0,20,0 intensity=100\n"
+                 "sphere center=0,0,0 radius=3 transparent=1 transparent_roughness=0.3\n"
+                 "sphere center=0,-1000,0 radius=990 color=0.8,0.8,0.8\n"));
+}
+
+TEST_CASE("a point light and glass too smooth to be rough, or between equal indices: blind",
+          "[blind_spot]") {
+  for (const char* glass : {"transparent_roughness=0.03", "transparent_roughness=0.5 ior=1"}) {
+    INFO(glass);
+    const auto spot = blind_spot(std::string("light position=0,20,0 intensity=100\n"
+                                             "sphere center=0,0,0 radius=3 transparent=1 ") +
+                                 glass + "\n");
+    REQUIRE(spot);
+    CHECK(spot->sphere_line == 2);
+  }
 }
 
 TEST_CASE("a point light and a mirror too smooth to be a microfacet lobe: blind", "[blind_spot]") {

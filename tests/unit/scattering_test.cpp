@@ -55,20 +55,8 @@ Material diffuse_material(float diffuse, Color color) {
 /// whose expected mass is what the density leaves of one.
 template <typename Draw, typename Density>
 glint::test::ChiSquare sampling_against(Draw&& draw, Density&& pdf, int n, std::uint32_t seed) {
-  std::vector<double> observed(kCells + 1, 0.0), expected(kCells + 1, 0.0);
   auto sampler = seeded_sampler(seed);
-  for (int i = 0; i < n; ++i) {
-    const ScatterSample s = draw(sampler);
-    ++observed[s.delta ? std::size_t(kCells) : std::size_t(cell_of(s.direction))];
-  }
-  const std::vector<double> mass = cell_masses(pdf);
-  double density_mass = 0.0;
-  for (int k = 0; k < kCells; ++k) {
-    expected[std::size_t(k)] = n * mass[std::size_t(k)];
-    density_mass += mass[std::size_t(k)];
-  }
-  expected[kCells] = n * std::max(0.0, 1.0 - density_mass);
-  return glint::test::chi_square_pooled(observed, expected);
+  return glint::test::sampling_against_density([&] { return draw(sampler); }, pdf, n);
 }
 
 }  // namespace

@@ -270,6 +270,56 @@ TEST_CASE("scene reader: rough and metal mirrors", "[scene_reader]") {
   }
 }
 
+TEST_CASE("scene reader: rough glass", "[scene_reader]") {
+  const auto material_of = [](const std::string& keys) {
+    const SceneDescription d = read_scene_text("sphere center=0,0,0 radius=1 " + keys + "\n");
+    REQUIRE(d.spheres.size() == 1);
+    return d.spheres[0].material;
+  };
+  const glint::Material frosted = material_of("transparent=1 transparent_roughness=0.3 ior=1.5");
+  CHECK(frosted.transparent_roughness == 0.3f);
+  CHECK(frosted.transparent == 1.0f);
+  CHECK(frosted.diffuse == 0.0f);
+  CHECK(frosted.mirror_roughness == 0.0f);
+  CHECK(frosted.has_rough_interface());
+  CHECK_FALSE(frosted.has_mirror_finish());
+  // The default is the ideal interface.
+  const glint::Material glass = material_of("transparent=1");
+  CHECK(glass.transparent_roughness == 0.0f);
+  CHECK_FALSE(glass.has_rough_interface());
+  // Independent of the mirror lobe's roughness.
+  const glint::Material both =
+      material_of("mirror=0.5 mirror_roughness=0.2 transparent=0.5 transparent_roughness=0.7");
+  CHECK(both.mirror_roughness == 0.2f);
+  CHECK(both.transparent_roughness == 0.7f);
+  CHECK(material_of("transparent=0.5 transparent_roughness=1").transparent_roughness == 1.0f);
+  CHECK(material_of("transparent=1 transparent_roughness=0").transparent_roughness == 0.0f);
+  // A named material carries it to the spheres that use it.
+  const SceneDescription named = read_scene_text(
+      "material frosted transparent=1 transparent_roughness=0.45\n"
+      "sphere center=0,0,0 radius=1 material=frosted\n");
+  REQUIRE(named.spheres.size() == 1);
+  CHECK(named.spheres[0].material.transparent_roughness == 0.45f);
+
+  SECTION("errors") {
+    expect_error("sphere center=0,0,0 radius=1 transparent_roughness=0.3\n", 1,
+                 "transparent_roughness roughens the transparent lobe, which this material does "
+                 "not have (transparent=0)");
+    expect_error("\nmaterial m diffuse=1 transparent=0 transparent_roughness=0.1\n", 2,
+                 "transparent_roughness roughens the transparent lobe");
+    expect_error("sphere center=0,0,0 radius=1 transparent=1 transparent_roughness=1.5\n", 1,
+                 "'transparent_roughness' must be in [0, 1], got '1.5'");
+    expect_error("sphere center=0,0,0 radius=1 transparent=1 transparent_roughness=-0.1\n", 1,
+                 "'transparent_roughness' must be in [0, 1], got '-0.1'");
+    expect_error("sphere center=0,0,0 radius=1 transparent=1 transparent_roughness=x\n", 1,
+                 "transparent_roughness");
+    expect_error(
+        "material glass transparent=1\n"
+        "sphere center=0,0,0 radius=1 material=glass transparent_roughness=0.3\n",
+        2, "sphere has both material=glass and inline key 'transparent_roughness'");
+  }
+}
+
 TEST_CASE("scene reader: layout rules", "[scene_reader]") {
   SECTION("comments anywhere, blank lines, tabs, several spaces") {
     const SceneDescription d = read_scene_text(
@@ -339,7 +389,7 @@ TEST_CASE("scene reader: syntax errors", "[scene_reader][errors]") {
     expect_error("sphere center=0,0,0 radius=1 radus=2\n", 1,
                  "valid keys: diffuse, color, mirror, mirror_color, transparent, "
                  "transparent_color, ior, emission, mirror_roughness, metal, metal_eta, metal_k, "
-                 "center, radius, material, shading");
+                 "transparent_roughness, center, radius, material, shading");
     expect_error("# c\nimage width=10 samples=4\n", 2,
                  "unknown key 'samples' for image (valid keys: width, height, spp, max_depth)");
     expect_error("camera fov=30 target=0,0,0\n", 1, "valid keys: position, look_at, up, fov, near");
@@ -350,7 +400,8 @@ TEST_CASE("scene reader: syntax errors", "[scene_reader][errors]") {
     expect_error("medium index=1\n", 1, "valid keys: ior");
     expect_error("material m shading=octants\n", 1,
                  "valid keys: diffuse, color, mirror, mirror_color, transparent, "
-                 "transparent_color, ior, emission, mirror_roughness, metal, metal_eta, metal_k)");
+                 "transparent_color, ior, emission, mirror_roughness, metal, metal_eta, metal_k, "
+                 "transparent_roughness)");
   }
   SECTION("a key given twice") {
     expect_error("\n\nsphere center=0,0,0 radius=1 radius=2\n", 3, "key 'radius' given twice");

@@ -91,6 +91,17 @@ glint::SceneDescription every_field_scene() {
   sphere.material.metal_k = Color(3.9f, 2.45f, 0.0f);
   scene.spheres.push_back(sphere);
 
+  sphere = {};  // frosted glass beside a rough mirror lobe
+  sphere.center = Vec3(-9.0f, 2.0f, 4.0f);
+  sphere.radius = 2.5f;
+  sphere.material.diffuse = 0.0f;
+  sphere.material.mirror = 0.2f;
+  sphere.material.mirror_roughness = 0.1f;
+  sphere.material.transparent = 0.8f;
+  sphere.material.transparent_roughness = 0.31622776f;
+  sphere.material.ior = 1.45f;
+  scene.spheres.push_back(sphere);
+
   sphere = {};  // pure glass: diffuse left to the default
   sphere.center = Vec3(-5.0f, 0.0f, 12.5f);
   sphere.radius = 3.0f;
@@ -104,6 +115,7 @@ glint::SceneDescription every_field_scene() {
   sphere.center = Vec3(-0.0f, 8.0f, -8.0f);
   sphere.radius = 1.0f;
   sphere.material.mirror = -0.0f;
+  sphere.material.transparent_roughness = -0.0f;
   sphere.material.diffuse = 0.5f;
   scene.spheres.push_back(sphere);
 
@@ -175,6 +187,7 @@ void require_same_scene(const glint::SceneDescription& a, const glint::SceneDesc
     REQUIRE(bits(x.material.ior) == bits(y.material.ior));
     require_same(x.material.emission, y.material.emission);
     REQUIRE(bits(x.material.mirror_roughness) == bits(y.material.mirror_roughness));
+    REQUIRE(bits(x.material.transparent_roughness) == bits(y.material.transparent_roughness));
     require_same(x.material.metal_eta, y.material.metal_eta);
     require_same(x.material.metal_k, y.material.metal_k);
   }
@@ -296,6 +309,16 @@ TEST_CASE("scene writer: material keys are left out only where the default resto
   CHECK(line_of(m) ==
         "sphere center=0,0,0 radius=1 mirror_color=0.5,0.5,0.5 "
         "transparent_color=0.25,0.25,0.25 emission=0,2,0");
+  // A rough interface is written; the ideal one (the default) is not.
+  m = {};
+  m.diffuse = 0.0f;
+  m.transparent = 1.0f;
+  m.transparent_roughness = 0.3f;
+  CHECK(line_of(m) == "sphere center=0,0,0 radius=1 transparent=1 transparent_roughness=0.3");
+  m.transparent_roughness = 0.0f;
+  CHECK(line_of(m) == "sphere center=0,0,0 radius=1 transparent=1");
+  m.transparent_roughness = -0.0f;
+  CHECK(line_of(m) == "sphere center=0,0,0 radius=1 transparent=1 transparent_roughness=-0");
 }
 
 TEST_CASE("scene writer: non-finite numbers are refused with the key named", "[io][writer]") {

@@ -33,4 +33,12 @@ struct TopOfSphere {
   }
 };
 
+/// The same hit with its Bsdf of type B.
+template <typename B>
+struct TopOfSphereWith : TopOfSphere {
+  TopOfSphereWith(const glint::Material& material, const glint::Vec3& incoming)
+      : TopOfSphere(material, incoming) {}
+  B bsdf(const glint::Vec3& incoming) const { return B(interaction, incoming); }
+};
+
 }  // namespace glint::test

@@ -125,16 +125,34 @@ enum MaterialKey : int {
   kMetal,
   kMetalEta,
   kMetalK,
+  kTransparentRoughness,
   kMaterialKeyCount
 };
 enum SphereKey : int { kCenter = kMaterialKeyCount, kRadius, kMaterialName, kShading };
-inline constexpr std::string_view kMaterialKeys[] = {
-    "diffuse", "color",    "mirror",           "mirror_color", "transparent", "transparent_color",
-    "ior",     "emission", "mirror_roughness", "metal",        "metal_eta",   "metal_k"};
-inline constexpr std::string_view kSphereKeys[] = {
-    "diffuse", "color",    "mirror",           "mirror_color", "transparent", "transparent_color",
-    "ior",     "emission", "mirror_roughness", "metal",        "metal_eta",   "metal_k",
-    "center",  "radius",   "material",         "shading"};
+inline constexpr std::string_view kMaterialKeys[] = {"diffuse",
+                                                     "color",
+                                                     "mirror",
+                                                     "mirror_color",
+                                                     "transparent",
+                                                     "transparent_color",
+                                                     "ior",
+                                                     "emission",
+                                                     "mirror_roughness",
+                                                     "metal",
+                                                     "metal_eta",
+                                                     "metal_k",
+                                                     "transparent_roughness"};
+/// A sphere's keys: every material key (an inline material), then its own.
+inline constexpr std::string_view kSphereOwnKeys[] = {"center", "radius", "material", "shading"};
+inline constexpr auto kSphereKeys = [] {
+  std::array<std::string_view, std::size(kMaterialKeys) + std::size(kSphereOwnKeys)> keys{};
+  std::size_t i = 0;
+  for (const std::string_view key : kMaterialKeys)
+    keys[i++] = key;
+  for (const std::string_view key : kSphereOwnKeys)
+    keys[i++] = key;
+  return keys;
+}();
 
 enum ImageKey : int { kWidth, kHeight, kSpp, kMaxDepthKey };
 inline constexpr std::string_view kImageKeys[] = {"width", "height", "spp", "max_depth"};
@@ -176,6 +194,12 @@ struct Fields {
   bool has(int key) const { return (present >> key) & 1u; }
   std::string_view operator[](int key) const { return values[static_cast<std::size_t>(key)]; }
 };
+// Every statement's keys fit in Fields (one bit of `present` each).
+static_assert([] {
+  for (const StatementKeys& statement : kStatementKeys)
+    if (statement.keys.size() > Fields::kMaxKeys) return false;
+  return true;
+}());
 
 struct StringHash {
   using is_transparent = void;
@@ -398,6 +422,8 @@ class Parser {
     if (f.has(kEmission)) m.emission = vec3("emission", f[kEmission]);
     if (f.has(kMirrorRoughness))
       m.mirror_roughness = coefficient("mirror_roughness", f[kMirrorRoughness]);
+    if (f.has(kTransparentRoughness))
+      m.transparent_roughness = coefficient("transparent_roughness", f[kTransparentRoughness]);
     if (f.has(kMetal)) {
       if (f.has(kMetalEta) || f.has(kMetalK))
         fail("give a metal by name (metal=) or by its index (metal_eta= and metal_k=), not both");

@@ -109,6 +109,8 @@ inline void append_material(std::string& out, const Material& m) {
   if (!same_bits(m.emission, defaults.emission)) append_key(out, "emission", m.emission);
   if (!same_bits(m.mirror_roughness, defaults.mirror_roughness))
     append_key(out, "mirror_roughness", m.mirror_roughness);
+  if (!same_bits(m.transparent_roughness, defaults.transparent_roughness))
+    append_key(out, "transparent_roughness", m.transparent_roughness);
   // By its index, not its name: the reader's mirror default for a named metal is then never
   // relied on, and a metal of one's own round-trips as well.
   if (m.is_metal()) {

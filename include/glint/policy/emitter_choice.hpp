@@ -26,14 +26,16 @@
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// A Float's lanes of shading points an emitter is chosen for: where each lies, the unit normal
-/// on the side light reflects from (the report's material's one lobe that a light sample serves
-/// is diffuse reflection), the sphere it lies on and whether it is seen from that sphere's inside.
+/// on the side light reflects from, the sphere it lies on, whether it is seen from that sphere's
+/// inside, and whether light is taken from both sides of the surface (a lobe with a density
+/// transmits: a rough interface), where the normal's side does not matter.
 template <typename F>
 struct EmitterChoicePoint {
   Vec3For<F> point;
   Vec3For<F> normal;
   UIntFor<F> sphere;
   MaskFor<F> from_inside;
+  MaskFor<F> two_sided = mask_of<MaskFor<F>>(false);
 };
 
 /// How light sampling chooses an emitter: `choose` gives each lane of points an emitter and the
@@ -68,8 +70,9 @@ struct EmitterChoiceByContribution {
   /// (h + r)/d at most one, where h is the height of its centre above the point's tangent plane,
   /// so that (h + r)/d is the sine of the elevation of its highest point; L from inside, where
   /// it fills the hemisphere. Positive exactly where some of the sphere is above the plane
-  /// (h > -r); zero where the point lies on its outer surface. One square root and one
-  /// division: the estimate runs for every emitter at every light sample.
+  /// (h > -r), or on either side of it at a two-sided point (|h| in place of h); zero where the
+  /// point lies on its outer surface. One square root and one division: the estimate runs for
+  /// every emitter at every light sample.
   template <FloatType F>
   static F estimate(const EmitterTable& table, std::uint32_t index,
                     const EmitterChoicePoint<F>& at) {
@@ -83,7 +86,8 @@ struct EmitterChoiceByContribution {
     const MaskFor<F> outside = !on_light && distance2 > radius2;
     const MaskFor<F> none = on_light && !at.from_inside;
     const F distance = sqrt(distance2);
-    const F top = dot(at.normal, to_center) + e.radius;
+    const F height = dot(at.normal, to_center);
+    const F top = select(at.two_sided, abs(height), height) + e.radius;
     // Lanes inside divide by zero where the point is the centre, and the select drops them.
     const F seen_from_outside =
         select(top > 0.0f, (radiance * radius2) * min(distance, top) / (distance2 * distance),
@@ -131,8 +135,8 @@ struct EmitterChoiceByContribution {
  private:
   template <FloatType F>
   static EmitterChoicePoint<float> point_of_lane(const EmitterChoicePoint<F>& at, int i) {
-    return {lane(at.point, i), lane(at.normal, i), lane(at.sphere, i),
-            lane(at.from_inside, i) != 0};
+    return {lane(at.point, i), lane(at.normal, i), lane(at.sphere, i), lane(at.from_inside, i) != 0,
+            lane(at.two_sided, i) != 0};
   }
 
   /// choose() with the estimates of emitter i given by estimate_of(i) for all lanes and by

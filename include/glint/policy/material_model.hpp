@@ -24,16 +24,19 @@ struct ReportMaterialModel {
   static constexpr std::string_view name = "the report's material";
   template <typename C, typename F>
   using bsdf = ReportMaterial<C, F>;
-  /// The report's lobes only: no rough or metal mirror.
-  static bool supports(const Material& material) { return !material.has_mirror_finish(); }
+  /// The report's lobes only: no rough or metal mirror, no rough interface.
+  static bool supports(const Material& material) {
+    return !material.has_mirror_finish() && !material.has_rough_interface();
+  }
 };
 
 /// The report's material with a mirror lobe that may be rough (a Trowbridge-Reitz microfacet
-/// lobe) and reflect as a metal (a conductor's Fresnel reflectance): every material of the scene
-/// format. Spheres without either render as under ReportMaterialModel, to the bit. Its rough
-/// lobe is not one of the report's tree estimator's lobes, which takes ReportMaterialModel only.
+/// lobe) and reflect as a metal (a conductor's Fresnel reflectance), and a transparent lobe whose
+/// interface may be rough (frosted glass): every material of the scene format. Spheres without
+/// either render as under ReportMaterialModel, to the bit. Its rough lobe is not one of the
+/// report's tree estimator's lobes, which takes ReportMaterialModel only.
 struct MicrofacetMaterialModel {
-  static constexpr std::string_view name = "microfacet mirrors and metals";
+  static constexpr std::string_view name = "microfacet mirrors, metals and glass";
   template <typename C, typename F>
   using bsdf = MicrofacetMaterial<C, F>;
   static bool supports(const Material&) { return true; }

@@ -65,6 +65,9 @@ using ScatterSample = BasicScatterSample<float>;
 ///  - scatters(): the lanes where some lobe reflects or transmits light at all;
 ///  - has_density(): the lanes where some lobe has a density over directions, so that light can
 ///    be sampled towards the point and subpaths joined there (not only delta lobes);
+///  - transmits_with_density(): the lanes where such a lobe also transmits, so that light is
+///    sampled and joined on both sides of the surface (B::transmits_with_density_at(surface)
+///    says the same of every hit on a sphere, for a vertex rebuilt from its sphere alone);
 ///  - sample<mode>(draws, lanes): a direction and its weight f |cos| / pdf for a path carrying
 ///    `mode`, drawn from `draws` (next_1d, next_2d) in the lanes of `lanes` (which scatter);
 ///  - evaluate<mode>(direction): f |cos| for light leaving in unit `direction` (zero for the delta
@@ -74,10 +77,13 @@ using ScatterSample = BasicScatterSample<float>;
 /// `Draws` is what the estimator draws from at this width: a Sampler at width 1.
 template <typename B, typename F, typename Draws>
 concept Bsdf = requires(const B bsdf, const BasicSurfaceInteraction<F>& interaction,
-                        const Vec3For<F>& direction, MaskFor<F> lanes, Draws& draws) {
+                        const Vec3For<F>& direction, MaskFor<F> lanes, Draws& draws,
+                        const SurfaceProperties& surface) {
   B(interaction, direction, lanes);
   { bsdf.scatters() } -> std::same_as<MaskFor<F>>;
   { bsdf.has_density() } -> std::same_as<MaskFor<F>>;
+  { bsdf.transmits_with_density() } -> std::same_as<MaskFor<F>>;
+  { B::transmits_with_density_at(surface) } -> std::same_as<bool>;
   {
     bsdf.template sample<Transport::radiance>(draws, lanes)
     } -> std::same_as<BasicScatterSample<F>>;
@@ -109,11 +115,14 @@ concept LobewiseBsdf = Bsdf<B, F, Draws> &&
 /// (the bidirectional estimators), to be asked after the hit is gone: record<mode>() gives a
 /// trivially copyable B::Record with
 ///  - has_density(): whether some lobe has a density (joins and merges can use the vertex);
+///  - transmits_with_density(): whether such a lobe transmits (light joins it from both sides);
 ///  - f(facing, wo, wi): f (without the cosine) for light scattered between unit directions wo,
 ///    towards where the subpath reached the vertex from, and wi, in the subpath's transport mode;
 ///  - pdf(facing, wo, wi): the density per unit solid angle with which the Bsdf samples wi for a
 ///    path that arrived from wo (zero where only a delta lobe could).
-/// `facing` is the vertex's normal on the side its subpath arrived from, which the vertex keeps.
+/// `facing` is the vertex's normal on the side its subpath arrived from, which the vertex keeps;
+/// wo is on that side but for a density asked the other way round through a lobe that
+/// transmits.
 template <typename B, typename Draws>
 concept RecordableBsdf = Bsdf<B, float, Draws> &&
     std::is_trivially_copyable_v<typename B::Record> &&
@@ -121,6 +130,7 @@ concept RecordableBsdf = Bsdf<B, float, Draws> &&
   { bsdf.template record<Transport::radiance>() } -> std::same_as<typename B::Record>;
   { bsdf.template record<Transport::importance>() } -> std::same_as<typename B::Record>;
   { record.has_density() } -> std::same_as<bool>;
+  { record.transmits_with_density() } -> std::same_as<bool>;
   { record.f(direction, direction, direction) } -> std::same_as<Color>;
   { record.pdf(direction, direction, direction) } -> std::same_as<float>;
 };

@@ -13,6 +13,7 @@
 
 #include "glint/instruction_set.hpp"
 #include "glint/render/materials/microfacet.hpp"
+#include "glint/render/materials/rough_interface.hpp"
 #include "glint/scene/scene.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
@@ -25,8 +26,8 @@ struct PathTracingBlindSpot {
 };
 
 /// The first point light that emits and the first sphere that reflects or transmits
-/// specularly (a non-zero transparent coefficient, or a mirror that is not rough enough to be a
-/// microfacet lobe, which a shadow ray reaches), where the scene has both; none
+/// specularly (a transparent lobe or a mirror that is not rough enough to be a microfacet lobe;
+/// light is sampled towards and through a rough one), where the scene has both; none
 /// otherwise. Conservative: it does not ask whether the light reaches the sphere or whether the
 /// caustic lands in view, so a scene it names may render the same by both estimators, but a
 /// scene it clears is one the path tracer renders without bias.
@@ -43,7 +44,11 @@ inline std::optional<PathTracingBlindSpot> path_tracing_blind_spot(const Scene& 
     const Material& material = scene.surface(sphere).material;
     const bool ideal_mirror =
         material.mirror > 0.0f && !is_microfacet_lobe(material.mirror_roughness);
-    if (ideal_mirror || material.transparent > 0.0f)
+    const bool ideal_interface =
+        material.transparent > 0.0f &&
+        !is_rough_interface(material.transparent, material.transparent_roughness, material.ior,
+                            scene.surface(sphere).ior_outside);
+    if (ideal_mirror || ideal_interface)
       return PathTracingBlindSpot{light->line, scene.sphere_line(sphere)};
   }
   return std::nullopt;

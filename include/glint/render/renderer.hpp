@@ -195,8 +195,8 @@ void check_supported(const Scene& scene) {
   if (const std::optional<std::uint32_t> sphere = first_unsupported_material<C>(scene))
     throw UnsupportedSceneError(
         scene.source(), scene.sphere_line(*sphere),
-        "a rough or metal mirror (mirror_roughness, metal) is not supported by this renderer "
-        "variant's material model (" +
+        "a rough or metal mirror or rough glass (mirror_roughness, metal, transparent_roughness) "
+        "is not supported by this renderer variant's material model (" +
             std::string(C::material_model::name) + ")");
 }
 

@@ -3,7 +3,8 @@
 // emission. The coefficients say what fraction of the light each lobe takes; they are in [0, 1]
 // and sum to at most 1, so a material never creates energy. Beyond the report, the mirror lobe
 // may be rough (a microfacet surface) and reflect as a metal does (a conductor's Fresnel
-// reflectance); a material model that has these (policy/material_model.hpp) renders them.
+// reflectance), and the transparent lobe's interface may be rough (frosted glass); a material
+// model that has these (policy/material_model.hpp) renders them.
 
 #include <cstdint>
 #include <string_view>
@@ -53,6 +54,10 @@ struct Material {
   /// Fresnel reflectance scales the mirror lobe; all zero (the default) for a reflectance of one.
   Color metal_eta{0.0f};
   Color metal_k{0.0f};
+  /// Roughness of the transparent lobe's interface in [0, 1], as mirror_roughness is of the
+  /// mirror: a microfacet interface that reflects and refracts through each facet; 0 is the
+  /// ideal interface.
+  float transparent_roughness = 0.0f;
 
   bool is_transparent() const { return transparent > 0.0f; }
   /// The report applies Fresnel only to spheres with no user-defined diffusion or mirror.
@@ -64,6 +69,8 @@ struct Material {
   bool has_mirror_finish() const {
     return mirror > 0.0f && (mirror_roughness > 0.0f || is_metal());
   }
+  /// The transparent lobe's interface is rough.
+  bool has_rough_interface() const { return transparent > 0.0f && transparent_roughness > 0.0f; }
 };
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -35,6 +35,7 @@ struct SurfaceLanes {
   F mirror_roughness;
   V3 metal_eta;
   V3 metal_k;
+  F transparent_roughness;  ///< the transparent lobe's interface (Material's, every lane)
 };
 
 namespace detail {
@@ -56,7 +57,8 @@ inline void set_surface_lane(SurfaceLanes<float>& to, int, const SurfaceProperti
         s.mirror_finish,
         s.mirror_finish ? m.mirror_roughness : 0.0f,
         s.mirror_finish ? m.metal_eta : Color(0.0f),
-        s.mirror_finish ? m.metal_k : Color(0.0f)};
+        s.mirror_finish ? m.metal_k : Color(0.0f),
+        m.transparent_roughness};
 }
 template <typename F>
 void set_surface_lane(SurfaceLanes<F>& to, int i, const SurfaceProperties& s) {
@@ -74,6 +76,7 @@ void set_surface_lane(SurfaceLanes<F>& to, int i, const SurfaceProperties& s) {
   to.fully_transparent[i] = s.fully_transparent ? -1 : 0;
   to.shading[i] = std::int32_t(s.shading);
   to.emitter[i] = s.emitter;
+  to.transparent_roughness[i] = m.transparent_roughness;
   if (s.mirror_finish) {
     to.mirror_finish[i] = -1;
     to.mirror_roughness[i] = m.mirror_roughness;
@@ -94,13 +97,14 @@ SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F
     if (lanes) detail::set_surface_lane(s, 0, scene.surface(sphere));
 #if defined(GLINT_AVX2)
   } else if constexpr (W == kLaneCount || W == kMaxColumnRows) {
-    // The 116 bytes of SurfaceProperties, read as 29 words: the material's sixteen floats of
-    // the report's lobes and seven of the mirror's finish, the centre, ior_outside, a word
-    // whose three low bytes are the shading kind, fully_transparent and mirror_finish (and whose
-    // high byte is padding), and the emitter's index. The report's words are loaded in three
-    // blocks of eight consecutive words (the first sixteen, and the last eight) for all the
-    // lanes at once, transposed in registers; the finish's block only where a lane has one.
-    constexpr int kRecordWords = 29;
+    // The 120 bytes of SurfaceProperties, read as 30 words: the material's sixteen floats of
+    // the report's lobes, seven of the mirror's finish and the transparent lobe's roughness, the
+    // centre, ior_outside, a word whose three low bytes are the shading kind, fully_transparent
+    // and mirror_finish (and whose high byte is padding), and the emitter's index. The report's
+    // words are loaded in three blocks of eight consecutive words (the first sixteen, and the
+    // last eight, which begin with the finish's last word and the transparent roughness) for all
+    // the lanes at once, transposed in registers; the finish's block only where a lane has one.
+    constexpr int kRecordWords = 30;
     static_assert(offsetof(SurfaceProperties, material) == 0 && offsetof(Material, diffuse) == 0 &&
                   offsetof(Material, diffuse_color) == 4 && offsetof(Material, mirror) == 16 &&
                   offsetof(Material, mirror_color) == 20 && offsetof(Material, transparent) == 32 &&
@@ -108,12 +112,13 @@ SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F
                   offsetof(Material, emission) == 52 &&
                   offsetof(Material, mirror_roughness) == 64 &&
                   offsetof(Material, metal_eta) == 68 && offsetof(Material, metal_k) == 80 &&
-                  offsetof(SurfaceProperties, center) == 92 &&
-                  offsetof(SurfaceProperties, ior_outside) == 104 &&
-                  offsetof(SurfaceProperties, shading) == 108 && sizeof(ShadingKind) == 1 &&
-                  offsetof(SurfaceProperties, fully_transparent) == 109 && sizeof(bool) == 1 &&
-                  offsetof(SurfaceProperties, mirror_finish) == 110 &&
-                  offsetof(SurfaceProperties, emitter) == 112 &&
+                  offsetof(Material, transparent_roughness) == 92 &&
+                  offsetof(SurfaceProperties, center) == 96 &&
+                  offsetof(SurfaceProperties, ior_outside) == 108 &&
+                  offsetof(SurfaceProperties, shading) == 112 && sizeof(ShadingKind) == 1 &&
+                  offsetof(SurfaceProperties, fully_transparent) == 113 && sizeof(bool) == 1 &&
+                  offsetof(SurfaceProperties, mirror_finish) == 114 &&
+                  offsetof(SurfaceProperties, emitter) == 116 &&
                   sizeof(SurfaceProperties) == kRecordWords * sizeof(float));
     static constexpr float kNoSurface[kRecordWords] = {};
     const float* record[W];
@@ -137,6 +142,7 @@ SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F
     s.transparent_color = {second[1], second[2], second[3]};
     s.ior = second[4];
     s.emission = {second[5], second[6], second[7]};
+    s.transparent_roughness = last[1];
     s.center = {last[2], last[3], last[4]};
     s.ior_outside = last[5];
     const auto flags = std::bit_cast<IntFor<F>>(last[6]);
@@ -180,7 +186,8 @@ SurfaceLanes<F> gather_surfaces(const Scene& scene, UIntFor<F> sphere, MaskFor<F
          both(low.mirror_finish, high.mirror_finish),
          both(low.mirror_roughness, high.mirror_roughness),
          both3(low.metal_eta, high.metal_eta),
-         both3(low.metal_k, high.metal_k)};
+         both3(low.metal_k, high.metal_k),
+         both(low.transparent_roughness, high.transparent_roughness)};
 #endif
   } else {
     for (int i = 0; i < W; ++i)

@@ -81,6 +81,13 @@ inline void check_material(const SceneDescription& scene, const Material& m, int
     fail(concat({"mirror_roughness must be in [0, 1], got ", format_number(m.mirror_roughness)}));
   if (m.mirror_roughness > 0.0f && !(m.mirror > 0.0f))
     fail("mirror_roughness roughens the mirror lobe, which this material does not have (mirror=0)");
+  if (!(m.transparent_roughness >= 0.0f && m.transparent_roughness <= 1.0f))
+    fail(concat(
+        {"transparent_roughness must be in [0, 1], got ", format_number(m.transparent_roughness)}));
+  if (m.transparent_roughness > 0.0f && !(m.transparent > 0.0f))
+    fail(
+        "transparent_roughness roughens the transparent lobe, which this material does not have "
+        "(transparent=0)");
   if (m.is_metal()) {
     const auto within = [](const Vec3& v, float low, float high) {
       for (int i = 0; i < 3; ++i)

@@ -509,11 +509,13 @@ class BidirectionalPathTracer {
   /// lies within the merging radius of it, for the pixel: its weight, over the light paths that
   /// could have brought it, with the uniform kernel over the radius's disc, 1 / merge_density in
   /// all. Zero where the path would be too long, where the light vertex lies on another sphere
-  /// or on the other side of it, or where the camera vertex's Bsdf does not take the light.
+  /// or on the other side of it (unless the camera vertex's Bsdf transmits with a density), or
+  /// where that Bsdf does not take the light.
   Color merge(const MergeTarget<Vertex>& target, const MergeCandidate& candidate) const {
     const Vertex& pt = *target.vertex;
     if (int(candidate.vertex) + target.camera_vertices - 2 > most_vertices_ ||
-        candidate.sphere != pt.sphere || candidate.outward != target.outward)
+        candidate.sphere != pt.sphere ||
+        (candidate.outward != target.outward && !pt.scattering.transmits_with_density()))
       return Color(0.0f);
     const Vec3 arrival = candidate.arrival.direction();
     const Color value = pt.scattering.f(pt.facing, target.toward_camera, arrival);
@@ -766,7 +768,10 @@ class BidirectionalPathTracer {
     const Vec2 u_point = sampler.next_2d();
     if (pt.kind != Kind::surface || !pt.joinable()) return Color(0.0f);
     const Vec3 to_camera_side = towards(pt, z[t - 2]);
-    const bool from_inside = glm::dot(pt.facing, pt.normal) < 0.0f;
+    // A vertex that transmits with a density sees its own sphere's light from inside, whichever
+    // side it was reached from.
+    const bool from_inside =
+        glm::dot(pt.facing, pt.normal) < 0.0f || pt.scattering.transmits_with_density();
     Vertex light{};
     const Color value = lights_.visit(choice.light, [&](const auto& source) {
       const LightSample sample =

@@ -119,18 +119,19 @@ class PathContext {
                                 splat<F>(kInfinity));
   }
 
-  /// For each point light on the side each ray came from, in the scene's order, the shadow
-  /// rays of the lanes of `lanes` that it lights, with the light `bsdf` reflects of it back along
-  /// the path (f |cos| times the light's radiance I colour / d^2) where they are not blocked, to
-  /// `queue.shadow_rays`.
+  /// For each point light on the side each ray came from (or on either side, where a lobe with a
+  /// density transmits), in the scene's order, the shadow rays of the lanes of `lanes` that it
+  /// lights, with the light `bsdf` scatters of it back along the path (f |cos| times the light's
+  /// radiance I colour / d^2) where they are not blocked, to `queue.shadow_rays`.
   template <typename F, typename B, typename Queue>
   void light_rays(MaskFor<F> lanes, const BasicSurfaceInteraction<F>& it, const B& bsdf,
                   Queue& queue, TraceCounters& counters) const {
     const BasicLightPoint<F> at{it.point, it.sphere, it.at.from_inside};
+    const MaskFor<F> two_sided = bsdf.transmits_with_density();
     for (const PointLight& light : scene_.lights()) {
       const BasicLightSample<F> sample = PointLightSource(light).sample_li(at);
       const F cosine = dot(sample.direction, it.at.facing_normal);
-      const MaskFor<F> lit = lanes && sample.valid && cosine > 0.0f;
+      const MaskFor<F> lit = lanes && sample.valid && (cosine > 0.0f || two_sided);
       if (!any(lit)) continue;
       counters.rays += count(lit);
       queue.shadow_rays(
@@ -165,8 +166,8 @@ class PathContext {
   }
 
   /// Light sampling at the hits of `lanes`: one emitter per lane, chosen by the light sampling
-  /// policy's emitter choice, and a
-  /// direction towards it, reflected by `bsdf` and weighted against the
+  /// policy's emitter choice (on both sides of the surface where a lobe with a density
+  /// transmits), and a direction towards it, scattered by `bsdf` and weighted against the
   /// estimator's own bounce, whose density for a direction is `bounce_pdf(direction)`. One
   /// next_1d and one next_2d per lane whenever the scene has emitters, none otherwise (so a
   /// scene without emitters renders exactly as without light sampling). The rays that can
@@ -180,13 +181,17 @@ class PathContext {
     if (!has_emitters_) return;
     const F u_choice = next_1d(draws, lanes);
     const Vec2For<F> u = next_2d(draws, lanes);
+    // A two-sided point sees its own sphere's light from inside, through the lobe that
+    // transmits, whichever side it was reached from.
+    const M two_sided = bsdf.transmits_with_density();
+    const M from_inside = it.at.from_inside || two_sided;
     const EmitterLanes<F> chosen = EmitterChoiceOf<>::choose(
         scene_.emitters(),
-        EmitterChoicePoint<F>{it.point, it.at.facing_normal, it.sphere, it.at.from_inside},
+        EmitterChoicePoint<F>{it.point, it.at.facing_normal, it.sphere, from_inside, two_sided},
         u_choice);
     const BasicSphereLight<F> light(chosen.center, chosen.radius, chosen.radiance, chosen.sphere);
     const BasicLightSample<F> sample =
-        light.sample_li({it.point, it.sphere, it.at.from_inside}, u, lanes);
+        light.sample_li({it.point, it.sphere, from_inside}, u, lanes);
     const V3 reflected = bsdf.template evaluate<Transport::radiance>(sample.direction);
     const M arrives = lanes && chosen.probability > 0.0f && sample.valid && sample.pdf > 0.0f &&
                       (reflected.x != 0.0f || reflected.y != 0.0f || reflected.z != 0.0f);
@@ -230,12 +235,17 @@ class PathContext {
                         bool heads_into_origin_sphere, const Vec3& direction, float t,
                         const Vec3& normal, std::uint32_t index, float from_pdf) const {
     const SphereLight emitter(scene_.emitters()[index]);
-    // The bounce that has a density is a reflection, so it left on the side the path arrived
-    // from: the light sample at its origin saw the same point, normal and side, rebuilt here as
-    // the hit computed them, and so chose with the same probability, to the bit.
-    const Vec3 outward = outward_normal_at(origin, scene_.surface(origin_sphere).center);
+    // A bounce that has a density either reflected, and so left on the side the path arrived
+    // from, or went through a two-sided surface, where the side does not matter: the light
+    // sample at its origin saw the same point, normal (up to its sign, which a two-sided choice
+    // ignores) and side, rebuilt here as the hit computed them, and so chose with the same
+    // probability, to the bit.
+    const SurfaceProperties& surface = scene_.surface(origin_sphere);
+    const Vec3 outward = outward_normal_at(origin, surface.center);
+    const bool two_sided = BsdfAt<C>::transmits_with_density_at(surface);
     const EmitterChoicePoint<float> at{origin, heads_into_origin_sphere ? -outward : outward,
-                                       origin_sphere, heads_into_origin_sphere};
+                                       origin_sphere, heads_into_origin_sphere || two_sided,
+                                       two_sided};
     // The ray started on its origin sphere; if that is the emitter it hit, it left it inwards
     // (a ray leaving a sphere outwards cannot meet it again), so the point saw it from inside.
     const float light_pdf = EmitterChoiceOf<>::probability(scene_.emitters(), at, index) *

@@ -97,6 +97,44 @@ inline MicrofacetReflection<F> microfacet_reflection(const TrowbridgeReitz<F>& d
           density / (four_cos_o * masking_o), wo.z > 0.0f && wi.z > 0.0f};
 }
 
+/// A refraction by a TrowbridgeReitz interface from wo (above, z > 0) to wi (below), without
+/// Fresnel: the microfacet normal that refracts one into the other (the generalised half vector
+/// of wo + eta wi, turned above the surface), f |cos(wi)| for radiance (a camera path's, which
+/// goes through unscaled, render/bsdf.hpp's Transport), and the density with which
+/// sample_visible_normal refracts wo to wi; `valid` where the facet has wo in front and wi
+/// behind (elsewhere the values are unspecified). `eta` is the index on wi's side over wo's.
+///
+/// With the facets' density D(h) G1(wo) (wo.h) / wo.z and the change of variables from the
+/// facet to the refracted direction, eta^2 |wi.h| / (wo.h + eta wi.h)^2, the density is their
+/// product, and f |cos(wi)| is the density times G2 / G1 = (1 + Lambda(wo)) / (1 + Lambda(wo)
+/// + Lambda(wi)) (Walter, Marschner, Li and Torrance 2007, "Microfacet Models for Refraction
+/// through Rough Surfaces", with the radiance scaled as glint's refraction scales it).
+template <FloatType F>
+struct MicrofacetTransmission {
+  Vec3For<F> half;
+  F f_cos;
+  F pdf;
+  MaskFor<F> valid;
+};
+
+/// The refraction from wo to wi through `d` at relative index `eta`, given 1 + Lambda(wo).
+template <FloatType F>
+inline MicrofacetTransmission<F> microfacet_transmission(const TrowbridgeReitz<F>& d,
+                                                         const Vec3For<F>& wo, F masking_o, F eta,
+                                                         const Vec3For<F>& wi) {
+  using V3 = Vec3For<F>;
+  const V3 toward = normalize(wo + eta * wi);
+  const V3 half = select(toward.z < 0.0f, -toward, toward);
+  const F cos_o = dot(wo, half);
+  const F cos_i = dot(wi, half);
+  const F denominator = cos_o + eta * cos_i;
+  const F jacobian = (eta * eta) * abs(cos_i) / (denominator * denominator);
+  const F visible = d.normal_density(half) * cos_o / wo.z;
+  const F pdf = visible * jacobian / masking_o;
+  return {half, visible * jacobian / (masking_o + d.lambda(wi)), pdf,
+          wo.z > 0.0f && wi.z < 0.0f && cos_o > 0.0f && cos_i < 0.0f};
+}
+
 namespace detail {
 /// The unpolarised Fresnel reflectance of a conductor of complex relative index eta + i k for a
 /// cosine `c` in [0, 1] on the incident side: the mean of the s and p reflectances in the closed

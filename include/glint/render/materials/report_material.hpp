@@ -58,6 +58,8 @@ class ReportMaterial {
     float diffuse_choice = 0.0f;  ///< the probability with which sample() chooses the lobe
 
     bool has_density() const { return diffuse_choice > 0.0f; }
+    /// No lobe with a density transmits: light is joined on the arrival side only.
+    bool transmits_with_density() const { return false; }
     Color f(const Vec3& facing, const Vec3& /*wo*/, const Vec3& wi) const {
       return glm::dot(wi, facing) > 0.0f ? albedo * kInvPi : Color(0.0f);
     }
@@ -76,6 +78,12 @@ class ReportMaterial {
   M scatters() const { return total_ > 0.0f; }
   /// Whether the diffuse lobe is present: the one with a density.
   M has_density() const { return s_.diffuse > 0.0f; }
+  /// Whether a lobe with a density transmits, so that light is sampled and joined on both sides
+  /// of the surface: none of the report's does.
+  M transmits_with_density() const { return mask_of<M>(false); }
+  /// transmits_with_density() of any hit on a sphere of properties `surface`, for an estimator
+  /// that rebuilds a vertex's light sampling from the sphere alone.
+  static bool transmits_with_density_at(const SurfaceProperties&) { return false; }
   M has_lobe(Lobe lobe) const { return coefficient(lobe) > 0.0f; }
   /// The diffuse coefficient times the sphere's colour at the hit (zero without a diffuse lobe).
   const V3& albedo() const { return albedo_; }
@@ -109,33 +117,7 @@ class ReportMaterial {
   /// the expectation is that of following every lobe. Requires scatters() in `lanes`.
   template <Transport mode = Transport::radiance, typename Draws>
   BasicScatterSample<F> sample(Draws& draws, M lanes = mask_of<M>(true)) const {
-    const F u = next_1d(draws, lanes) * total_;
-    const M diffuse = u < s_.diffuse;
-    const M mirror = !diffuse && u < s_.diffuse + s_.mirror;
-    const M transmits = lanes && !(diffuse || mirror);
-    // One draw per lane after the choice: the diffuse direction's or Fresnel's.
-    const Vec2For<F> u_diffuse = next_2d(draws, lanes && diffuse);
-    BasicScatterSample<F> s{mirror_direction(), s_.mirror_color,  total_,
-                            s_.mirror / total_, mask_of<M>(true), lobe_lanes<F>(Lobe::mirror)};
-    if (any(transmits)) {
-      const BasicScatterSample<F> t = sample_transmission<mode>(draws, transmits);
-      s.direction = select(transmits, t.direction, s.direction);
-      s.tint = select(transmits, s_.transparent_color, s.tint);
-      if constexpr (mode == Transport::importance)
-        s.factor = select(transmits, s.factor * t.factor, s.factor);
-      s.pdf = select(transmits, t.pdf * (s_.transparent / total_), s.pdf);
-      s.lobe = select(transmits, t.lobe, s.lobe);
-    }
-    if (any(lanes && diffuse)) {
-      const BasicScatterSample<F> d = sample_diffuse(u_diffuse);
-      s.direction = select(diffuse, d.direction, s.direction);
-      s.tint = select(diffuse, d.tint, s.tint);
-      s.factor = select(diffuse, d.factor * kInvPi * total_ / s_.diffuse, s.factor);
-      s.pdf = select(diffuse, d.pdf * (s_.diffuse / total_), s.pdf);
-      s.delta = !diffuse;
-      s.lobe = select(diffuse, d.lobe, s.lobe);
-    }
-    return s;
+    return sample_lobes<mode>(draws, lanes, mask_of<M>(true));
   }
 
   /// f·cos for `direction` leaving the surface: the diffuse lobe only, since a delta lobe has
@@ -162,6 +144,47 @@ class ReportMaterial {
   F lobe_probability(Lobe lobe) const { return coefficient(lobe) / total_; }
 
  protected:
+  /// sample(), with the transmission lobe's direction drawn only in the lanes of `ideal` (the
+  /// others, where a model that extends this one has its own interface, keep the lobe's choice
+  /// and tint and draw nothing more for it).
+  template <Transport mode, typename Draws>
+  BasicScatterSample<F> sample_lobes(Draws& draws, M lanes, M ideal) const {
+    const F u = next_1d(draws, lanes) * total_;
+    const M diffuse = u < s_.diffuse;
+    const M mirror = !diffuse && u < s_.diffuse + s_.mirror;
+    const M chose_transmission = lanes && !(diffuse || mirror);
+    const M transmits = chose_transmission && ideal;
+    // One draw per lane after the choice: the diffuse direction's or Fresnel's.
+    const Vec2For<F> u_diffuse = next_2d(draws, lanes && diffuse);
+    BasicScatterSample<F> s{mirror_direction(), s_.mirror_color,  total_,
+                            s_.mirror / total_, mask_of<M>(true), lobe_lanes<F>(Lobe::mirror)};
+    if (any(transmits)) {
+      const BasicScatterSample<F> t = sample_transmission<mode>(draws, transmits);
+      s.direction = select(transmits, t.direction, s.direction);
+      s.tint = select(transmits, s_.transparent_color, s.tint);
+      if constexpr (mode == Transport::importance)
+        s.factor = select(transmits, s.factor * t.factor, s.factor);
+      s.pdf = select(transmits, t.pdf * (s_.transparent / total_), s.pdf);
+      s.lobe = select(transmits, t.lobe, s.lobe);
+    }
+    if (any(chose_transmission && !ideal)) {
+      const M other = chose_transmission && !ideal;
+      s.tint = select(other, s_.transparent_color, s.tint);
+      s.pdf = select(other, s_.transparent / total_, s.pdf);
+      s.lobe = select(other, lobe_lanes<F>(Lobe::transmission), s.lobe);
+    }
+    if (any(lanes && diffuse)) {
+      const BasicScatterSample<F> d = sample_diffuse(u_diffuse);
+      s.direction = select(diffuse, d.direction, s.direction);
+      s.tint = select(diffuse, d.tint, s.tint);
+      s.factor = select(diffuse, d.factor * kInvPi * total_ / s_.diffuse, s.factor);
+      s.pdf = select(diffuse, d.pdf * (s_.diffuse / total_), s.pdf);
+      s.delta = !diffuse;
+      s.lobe = select(diffuse, d.lobe, s.lobe);
+    }
+    return s;
+  }
+
   // The lobes' pieces, for the models that extend this one (materials/microfacet_material.hpp).
   F coefficient(Lobe lobe) const {
     switch (lobe) {
