@@ -71,16 +71,32 @@ struct RoughInterface {
   };
   Scatter scatter(const V3& wo, const V3& wi) const {
     const M transmits = wi.z < 0.0f;
+    // Each branch only where some lane takes it: a lane's values are its own branch's.
+    if (!any(transmits)) return reflected(wo, wi);
+    if (all(transmits)) return transmitted(wo, wi);
+    const Scatter r = reflected(wo, wi);
+    const Scatter t = transmitted(wo, wi);
+    return {select(transmits, t.f_cos, r.f_cos), select(transmits, t.pdf, r.pdf),
+            select(transmits, t.valid, r.valid), transmits};
+  }
+
+  /// scatter() for directions above the surface: reflection by a facet.
+  Scatter reflected(const V3& wo, const V3& wi) const {
     const MicrofacetReflection<F> r = microfacet_reflection(distribution, wo, masking_o, wi);
+    const F share = reflectance(dot(wo, r.half));
+    const F zero = splat<F>(0.0f);
+    return {select(r.above, share * r.f_cos, zero), select(r.above, share * r.pdf, zero),
+            r.above && share > 0.0f, mask_of<M>(false)};
+  }
+
+  /// scatter() for directions below the surface: refraction through a facet.
+  Scatter transmitted(const V3& wo, const V3& wi) const {
     const MicrofacetTransmission<F> t =
         microfacet_transmission(distribution, wo, masking_o, eta_t / eta_o, wi);
-    const F reflected = reflectance(dot(wo, select(transmits, t.half, r.half)));
-    const M valid = select(transmits, t.valid, r.above);
+    const F share = 1.0f - reflectance(dot(wo, t.half));
     const F zero = splat<F>(0.0f);
-    const F share = select(transmits, 1.0f - reflected, reflected);
-    return {select(valid, share * select(transmits, t.f_cos, r.f_cos), zero),
-            select(valid, share * select(transmits, t.pdf, r.pdf), zero), valid && share > 0.0f,
-            transmits};
+    return {select(t.valid, share * t.f_cos, zero), select(t.valid, share * t.pdf, zero),
+            t.valid && share > 0.0f, mask_of<M>(true)};
   }
 
   /// A direction for local `wo`: a facet drawn among those wo sees (from `u`), then its
