@@ -225,6 +225,20 @@ int load_scene_on_ranks(const mpi::World& world, const cli::Program& program,
               loaded.settings.threads = std::min(mpi::cpus_available(), glint::limits::max_threads);
           })))
     return status;
+  // Every rank reads the images the spheres show from its own file system: they must be rank
+  // 0's, or the ranks would render different scenes into one image.
+  const std::uint64_t images = cli::scene_textures_hash(0, *loaded.scene);
+  std::uint64_t rank0_images = images;
+  MPI_Bcast(&rank0_images, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  if (int status = mpi::agree(world, mpi::attempt(program, [&] {
+                                if (rank0_images != images)
+                                  throw glint::Error("cannot render " + options.scene +
+                                                     ": the images its spheres show differ "
+                                                     "here from rank 0's");
+                              })))
+    return status;
+  if (everywhere || (world.rank == 0 && (options.checkpoint || options.resume)))
+    loaded.hash = cli::scene_textures_hash(loaded.hash, *loaded.scene);
   times.ready = mpi::seconds_since(start);
   return 0;
 }

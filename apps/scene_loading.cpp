@@ -2,6 +2,7 @@
 
 #include "scene_loading.hpp"
 
+#include <unordered_set>
 #include <utility>
 
 #include "command_line.hpp"
@@ -21,6 +22,18 @@ std::string scene_file_text(LoadProgress& loading, const std::string& file) {
 
 std::uint64_t scene_text_hash(std::string_view text) {
   return glint::fnv1a(text.data(), text.size());
+}
+
+std::uint64_t scene_textures_hash(std::uint64_t hash, const glint::Scene& scene) {
+  std::unordered_set<const glint::Texture*> seen;
+  for (const glint::SphereTexture& texture : scene.textures()) {
+    const glint::Texture& image = texture.image();
+    if (!seen.insert(&image).second) continue;
+    const int size[2] = {image.width(), image.height()};
+    hash = glint::fnv1a(size, sizeof size, hash);
+    hash = glint::fnv1a(image.texels().data(), image.texels().size() * sizeof(glint::Color), hash);
+  }
+  return hash;
 }
 
 glint::Scene parse_and_build(LoadProgress& loading, std::string text, const std::string& source) {
@@ -43,7 +56,9 @@ LoadedScene load_scene(const std::string& file, bool report, bool hash) {
   LoadProgress loading(report, file);
   std::string text = scene_file_text(loading, file);
   const std::uint64_t text_hash = hash ? scene_text_hash(text) : 0;
-  return {parse_and_build(loading, std::move(text), file), text_hash};
+  glint::Scene scene = parse_and_build(loading, std::move(text), file);
+  const std::uint64_t scene_hash = hash ? scene_textures_hash(text_hash, scene) : 0;
+  return {std::move(scene), scene_hash};
 }
 
 glint::RenderSettings render_settings(const Options& options, const glint::Scene& scene) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -371,19 +372,31 @@ BENCHMARK_TEMPLATE(BM_AntialiasingOffset, glint::TentAntialiasing);
 // Shading dispatch
 
 /// Directions on the sphere and colours; the kinds argument fixes every sphere's kind, or
-/// (-1) mixes the three kinds at random so the switch cannot be predicted.
+/// (-1) mixes the four built-in kinds at random so the switch cannot be predicted. Textured
+/// spheres show a 2048x1024 image of random texels, so that lookups miss the caches as a
+/// large texture's do.
 struct ShadingInputs {
-  std::vector<Vec3> directions;
+  std::vector<glint::ShadingPoint> points;
   std::vector<glint::Color> colors;
   std::vector<glint::ShadingKind> kinds;
-  explicit ShadingInputs(int kind) : directions(kInputs), colors(kInputs), kinds(kInputs) {
+  glint::SphereTexture texture;
+  explicit ShadingInputs(int kind)
+      : points(kInputs), colors(kInputs), kinds(kInputs), texture(random_texture(), {}) {
     glint::Pcg32 rng(5, 5);
     for (std::size_t i = 0; i < kInputs; ++i) {
-      directions[i] = random_unit_vector(rng);
       colors[i] = glint::Color(rng.next_float(), rng.next_float(), rng.next_float());
-      kinds[i] = static_cast<glint::ShadingKind>(
-          kind >= 0 ? kind : int(rng.next_u32() % glint::kShadingKindCount));
+      kinds[i] = static_cast<glint::ShadingKind>(kind >= 0 ? kind : int(rng.next_u32() % 4));
+      points[i] = {random_unit_vector(rng),
+                   kinds[i] == glint::ShadingKind::texture ? &texture : nullptr};
     }
+  }
+  static std::shared_ptr<const glint::Texture> random_texture() {
+    constexpr int kWidth = 2048, kHeight = 1024;
+    glint::Pcg32 rng(6, 6);
+    std::vector<glint::Color> texels(std::size_t(kWidth) * kHeight);
+    for (glint::Color& texel : texels)
+      texel = glint::Color(rng.next_float(), rng.next_float(), rng.next_float());
+    return std::make_shared<const glint::Texture>("random", kWidth, kHeight, std::move(texels));
   }
 };
 
@@ -393,18 +406,19 @@ void BM_Shading(benchmark::State& state) {
   std::size_t i = 0;
   for (auto _ : state) {
     const std::size_t k = i++ & kMask;
-    benchmark::DoNotOptimize(H::color(in.kinds[k], in.colors[k], in.directions[k]));
+    benchmark::DoNotOptimize(H::color(in.kinds[k], in.colors[k], in.points[k]));
   }
   state.SetItemsProcessed(state.iterations());
 }
 // UniformShading supports the uniform kind only; BuiltinShading: 0 uniform, 1 octants,
-// 2 checker, -1 a random mix.
+// 2 checker, 3 texture, -1 a random mix.
 BENCHMARK_TEMPLATE(BM_Shading, glint::UniformShading)->ArgName("kind")->Arg(0);
 BENCHMARK_TEMPLATE(BM_Shading, glint::BuiltinShading)
     ->ArgName("kind")
     ->Arg(0)
     ->Arg(1)
     ->Arg(2)
+    ->Arg(3)
     ->Arg(-1);
 
 // ---------------------------------------------------------------------------------------------

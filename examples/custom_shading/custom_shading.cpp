@@ -14,11 +14,11 @@
 struct StripesShading {
   static bool supports(glint::ShadingKind) { return true; }
 
-  static glint::Color color(glint::ShadingKind kind, glint::Color base, glint::Vec3 direction) {
-    if (kind != glint::ShadingKind::custom)
-      return glint::BuiltinShading::color(kind, base, direction);
+  static glint::Color color(glint::ShadingKind kind, glint::Color base,
+                            const glint::ShadingPoint& at) {
+    if (kind != glint::ShadingKind::custom) return glint::BuiltinShading::color(kind, base, at);
     // Ten bands from pole to pole, alternating the sphere's colour and a dark grey.
-    const int band = static_cast<int>(std::floor((direction.y + 1.0f) * 5.0f));
+    const int band = static_cast<int>(std::floor((at.direction.y + 1.0f) * 5.0f));
     return band % 2 == 0 ? base : glint::Color(0.1f);
   }
 };

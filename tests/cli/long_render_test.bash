@@ -464,8 +464,8 @@ case_checkpoint_after_kill() {
   cmp out.png full.png && cmp out.pfm full.pfm || fail "the resumed image differs"
 }
 
-# A checkpoint of another scene, sample count or variant, or a damaged one: refused before
-# rendering, naming the file and the difference.
+# A checkpoint of another scene (or of the scene with another image on a sphere), sample count
+# or variant, or a damaged one: refused before rendering, naming the file and the difference.
 case_resume_refused() {
   "$program" "$scene" "${long_render[@]}" --time-limit 0 --checkpoint ck.glint --quiet 2>err.log ||
     fail "making the checkpoint failed (status $?)"
@@ -487,6 +487,17 @@ case_resume_refused() {
     "$scene" "${long_render[@]}" --resume short.glint
   refused_before_render "^glint-render: error: cannot resume from .*/$(basename "$scene" .scene)\.scene: it is not a glint checkpoint" \
     "$scene" "${long_render[@]}" --resume "$scene"
+  [[ ! -e out.png && ! -e out.pfm ]] || fail "an image was written"
+  # The images a scene's spheres show are part of it: one changed since the checkpoint makes it
+  # another scene's, though the scene file is the same.
+  "$program" "$scene" --width 8 --height 4 --spp 1 -o map.png --quiet || fail "the map: $?"
+  { cat "$scene"; echo; echo "sphere center=0,0,-1000 radius=1 texture=map.png"; } >textured.scene
+  "$program" textured.scene "${long_render[@]}" --time-limit 0 --checkpoint tex.glint --quiet \
+    2>err.log || fail "making the textured checkpoint failed (status $?)"
+  rm out.png out.pfm
+  "$program" "$scene" --width 4 --height 2 --spp 1 -o map.png --quiet || fail "the map: $?"
+  refused_before_render "^glint-render: error: cannot resume from tex\.glint: it was made from another scene \(the scene file's bytes or its images differ\)$" \
+    textured.scene "${long_render[@]}" --resume tex.glint
   [[ ! -e out.png && ! -e out.pfm ]] || fail "an image was written"
 }
 

@@ -10,7 +10,8 @@
 #       in the first cell of a table row in the section of DOC whose heading starts with
 #       `STATEMENT (subsections included); every shading kind in the first cell of a table row
 #       under the heading "Shading kinds"; and the block after "<!-- complete example -->" must
-#       be a valid scene that uses every statement and every key.
+#       be a valid scene that uses every statement and every key (its textures/ is
+#       docs/images/textures).
 set -euo pipefail
 
 fail=0
@@ -92,6 +93,8 @@ case ${1:-} in
     awk '/^<!-- complete example -->/ { marker = 1; next }
          marker && /^```/ { if (inside) exit; inside = 1; next }
          inside { print }' "$doc" >example.scene
+    # Its image texture is the gallery's, at the path the example gives.
+    ln -sfn "$(cd "$(dirname "$doc")" && pwd)/images/textures" textures
     if [[ ! -s example.scene ]]; then
       missing "a complete example (a code block after <!-- complete example -->)"
     elif ! "$program" example.scene >/dev/null; then

@@ -67,6 +67,34 @@ same_bytes_of() { # SCENE VARIANT RANKS THREADS [OPTION...]
   no_temporaries
 }
 
+# A scene whose spheres show images: glint-render's bytes, every rank reading the images.
+case_textured_same_bytes() { # RANKS THREADS
+  same_bytes_of "$source_dir/bench/scenes/textured.scene" "[a-z_]+" "$@"
+}
+
+# Ranks that read different images for the same scene (each in its own directory, mpirun's
+# A : B form) would mix two scenes into one image: refused, status 1, nothing written.
+case_different_images() {
+  mkdir -p a b
+  "$program" "$lamp_room" --width 8 --height 4 --spp 1 -o a/map.png --quiet || fail "map: $?"
+  "$program" "$lamp_room" --width 4 --height 2 --spp 1 -o b/map.png --quiet ||
+    fail "map: $?"
+  for dir in a b; do
+    { cat "$lamp_room"; echo; echo "sphere center=0,0,-1000 radius=1 texture=map.png"; } \
+      >$dir/textured.scene
+  done
+  for read in "" --scene-everywhere; do
+    "$mpiexec" --oversubscribe --bind-to none -n 1 -wdir a "$mpi_program" textured.scene \
+      "${small[@]}" --threads 1 -o "$PWD/out.png" $read : -n 1 -wdir b "$mpi_program" \
+      textured.scene "${small[@]}" --threads 1 -o "$PWD/out.png" $read >out.log 2>err.log
+    local status=$?
+    ((status == 1)) || fail "exit status $status, expected 1 ($read)"
+    grep -q "cannot render textured.scene: the images its spheres show differ here from rank 0's" \
+      err.log || fail "no message naming the images ($read)"
+    [[ ! -e out.png ]] || fail "an image was written ($read)"
+  done
+}
+
 # Each estimator over MPI, on the caustic scene: glint-render's bytes, the splats of every rank
 # summed (and, for vertex merging, every rank's own light phase of each sample index).
 case_estimator_same_bytes() { # RANKS THREADS ESTIMATOR: a name, or auto (vcm, by the scene)

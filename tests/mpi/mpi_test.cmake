@@ -1,7 +1,8 @@
 # glint-render-mpi under mpirun (label `mpi`), where MPI was found and glint-render-mpi built:
 # the bytes of glint-render's image for 1, 2 and 3 ranks (and with --scalar, and with --simd
 # scalar), every estimator's (their splats summed over the ranks, vertex merging's light phase
-# run by each), checkpoints resumed across the two programs, a scene error printed once, ranks
+# run by each), a scene with image textures, ranks that read different images refused,
+# checkpoints resumed across the two programs, a scene error printed once, ranks
 # started with different settings refused, a bad option, a rank killed mid-render, and a stop by
 # a signal (tests/mpi/mpi_render_test.bash). Ranks outnumber the cores with --oversubscribe; CI
 # runs as root, which Open MPI refuses unless told otherwise.
@@ -46,6 +47,8 @@ if(GLINT_BLIND_SPOT_VARIANT IN_LIST GLINT_BUILT_VARIANTS)
   glint_mpi_test(resume-vcm-across-programs resume_across caustic)
 endif()
 glint_mpi_test(resume-across-programs resume_across)
+glint_mpi_test(same-bytes-2-ranks-textured textured_same_bytes 2 1)
+glint_mpi_test(different-images different_images)
 glint_mpi_test(scene-error scene_error)
 glint_mpi_test(bad-option bad_option)
 glint_mpi_test(different-settings different_settings)

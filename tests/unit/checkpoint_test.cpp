@@ -347,8 +347,8 @@ TEST_CASE("a checkpoint of another render is refused, naming the difference", "[
   glint::CheckpointKey key = sample_key();
   key.scene_hash ^= 1;
   CHECK(refusal(key) ==
-        "cannot resume from ck.bin: it was made from another scene (the scene file's bytes "
-        "differ)");
+        "cannot resume from ck.bin: it was made from another scene (the scene file's bytes or its "
+        "images differ)");
   key = sample_key();
   key.variant = "fast";
   CHECK(refusal(key) ==

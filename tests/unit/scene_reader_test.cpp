@@ -539,8 +539,9 @@ TEST_CASE("scene reader: semantic errors", "[scene_reader][errors]") {
           2.0f);
   }
   SECTION("shading kinds") {
-    expect_error("sphere center=0,0,0 radius=1 shading=stripes\n", 1,
-                 "unknown shading 'stripes' (expected uniform, octants, checker or custom)");
+    expect_error(
+        "sphere center=0,0,0 radius=1 shading=stripes\n", 1,
+        "unknown shading 'stripes' (expected uniform, octants, checker, texture or custom)");
     expect_error("sphere center=0,0,0 radius=1 shading=Octants\n", 1, "unknown shading");
   }
   SECTION("the first error in the file is the one reported") {
@@ -788,7 +789,10 @@ TEST_CASE("scene reader: files", "[scene_reader][file]") {
     REQUIRE(open != std::string::npos);
     const std::size_t close = doc.find("\n```", open + 4);
     REQUIRE(close != std::string::npos);
-    const SceneDescription d = read_scene_text(doc.substr(open + 4, close - open - 3), "doc");
+    // As if the file were in docs/images/, where its texture's path leads.
+    const SceneDescription d = read_scene_text(
+        doc.substr(open + 4, close - open - 3),
+        (fs::path(GLINT_SOURCE_DIR) / "docs" / "images" / "example.scene").string());
     CHECK(d.lights.size() >= 1);
     CHECK(d.spheres.size() >= 5);
   }

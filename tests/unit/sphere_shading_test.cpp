@@ -28,7 +28,7 @@ TEST_CASE("the checker alternates over sectors of 45 degrees of longitude and la
     if (std::abs(u - std::round(u)) < 1e-4 || std::abs(v - std::round(v)) < 1e-4) continue;
     const bool odd = ((int(u) + int(v)) & 1) != 0;
     const Color expected = odd ? Color(1.0f) - base : base;
-    const Color got = BuiltinShading::color(glint::ShadingKind::checker, base, d);
+    const Color got = BuiltinShading::color(glint::ShadingKind::checker, base, {d});
     INFO("direction " << d.x << ", " << d.y << ", " << d.z << ": sectors " << int(u) << ", "
                       << int(v));
     REQUIRE(got == expected);
@@ -46,9 +46,9 @@ TEST_CASE("octant shading colours each octant by the signs of the direction", "[
   for (int octant = 0; octant < 8; ++octant) {
     const Vec3 d((octant & 1) ? 0.5f : -0.5f, (octant & 2) ? 0.5f : -0.5f,
                  (octant & 4) ? 0.5f : -0.5f);
-    seen[octant] = BuiltinShading::color(glint::ShadingKind::octants, base, d);
+    seen[octant] = BuiltinShading::color(glint::ShadingKind::octants, base, {d});
     for (int other = 0; other < octant; ++other)
       CHECK(seen[octant] != seen[other]);
   }
-  CHECK(BuiltinShading::color(glint::ShadingKind::uniform, base, Vec3(0.0f, 1.0f, 0.0f)) == base);
+  CHECK(BuiltinShading::color(glint::ShadingKind::uniform, base, {Vec3(0.0f, 1.0f, 0.0f)}) == base);
 }

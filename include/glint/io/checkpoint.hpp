@@ -9,7 +9,7 @@
 //   offset  size  field
 //   0       8     magic "GLINTCKP"
 //   8       4     u32 format version
-//   12      8     u64 FNV-1a hash of the scene file's bytes
+//   12      8     u64 FNV-1a hash of the scene file's bytes and its images
 //   20      4     u32 variant name length n (at most kMaxVariantName)
 //   24      n     variant name
 //   24+n    4*9   u32 width, height, samples per pixel, max depth, max_pass_samples;
@@ -55,7 +55,7 @@ class CheckpointError : public Error {
 /// same key. The thread count and tile size are not in it, because the image does not depend
 /// on them.
 struct CheckpointKey {
-  std::uint64_t scene_hash = 0;  ///< fnv1a of the scene file's bytes
+  std::uint64_t scene_hash = 0;  ///< fnv1a of the scene file's bytes and its images
   std::string variant;
   int width = 0;
   int height = 0;
@@ -481,7 +481,7 @@ inline void check_checkpoint_matches(const Checkpoint& c, const CheckpointKey& e
            ", this render has " + std::to_string(ours));
   };
   if (got.scene_hash != expected.scene_hash)
-    fail("it was made from another scene (the scene file's bytes differ)");
+    fail("it was made from another scene (the scene file's bytes or its images differ)");
   if (got.variant != expected.variant)
     fail("it was made by variant '" + got.variant + "', this is variant '" + expected.variant +
          "'");

@@ -37,6 +37,7 @@
 #include "glint/detail/text.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/io/input_file.hpp"
+#include "glint/io/texture_reader.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/scene/material.hpp"
 #include "glint/scene/metals.hpp"
@@ -128,7 +129,15 @@ enum MaterialKey : int {
   kTransparentRoughness,
   kMaterialKeyCount
 };
-enum SphereKey : int { kCenter = kMaterialKeyCount, kRadius, kMaterialName, kShading };
+enum SphereKey : int {
+  kCenter = kMaterialKeyCount,
+  kRadius,
+  kMaterialName,
+  kShading,
+  kTexture,
+  kTextureAxis,
+  kTextureTurn
+};
 inline constexpr std::string_view kMaterialKeys[] = {"diffuse",
                                                      "color",
                                                      "mirror",
@@ -143,7 +152,8 @@ inline constexpr std::string_view kMaterialKeys[] = {"diffuse",
                                                      "metal_k",
                                                      "transparent_roughness"};
 /// A sphere's keys: every material key (an inline material), then its own.
-inline constexpr std::string_view kSphereOwnKeys[] = {"center", "radius", "material", "shading"};
+inline constexpr std::string_view kSphereOwnKeys[] = {
+    "center", "radius", "material", "shading", "texture", "texture_axis", "texture_turn"};
 inline constexpr auto kSphereKeys = [] {
   std::array<std::string_view, std::size(kMaterialKeys) + std::size(kSphereOwnKeys)> keys{};
   std::size_t i = 0;
@@ -166,7 +176,7 @@ inline constexpr std::string_view kBackgroundKeys[] = {"color"};
 inline constexpr std::string_view kMediumKeys[] = {"ior"};
 
 static_assert(std::size(kMaterialKeys) == kMaterialKeyCount &&
-              kShading + 1 == int(std::size(kSphereKeys)));
+              kTextureTurn + 1 == int(std::size(kSphereKeys)));
 
 inline constexpr std::string_view kStatements[] = {"image",  "camera", "antialias", "background",
                                                    "medium", "light",  "material",  "sphere"};
@@ -566,6 +576,19 @@ class Parser {
       sphere.material = material_from(f);
     }
     if (f.has(kShading)) sphere.shading = shading(f[kShading]);
+    if (f.has(kTexture)) {
+      if (!f.has(kShading)) sphere.shading = ShadingKind::texture;
+      // A mistake in the keys is named before the file is read.
+      if (const std::string problem = detail::texture_shading_problem(sphere.shading, true);
+          !problem.empty())
+        fail(problem);
+      sphere.texture = texture(f[kTexture]);
+    } else if (f.has(kTextureAxis) || f.has(kTextureTurn)) {
+      fail("texture_axis and texture_turn place an image: give it with texture=FILE");
+    }
+    if (f.has(kTextureAxis)) sphere.texture_placement.axis = vec3("texture_axis", f[kTextureAxis]);
+    if (f.has(kTextureTurn))
+      sphere.texture_placement.turn_degrees = number("texture_turn", f[kTextureTurn]);
     detail::check_sphere(scene_, sphere);
     scene_.spheres.push_back(sphere);
   }
@@ -581,6 +604,23 @@ class Parser {
     fail(detail::concat({"unknown shading ", quoted(text), " (expected ", expected, ")"}));
   }
 
+  /// The image of `texture=FILE`, read once however many spheres show it. A relative path is
+  /// taken from the directory of the scene file (of `source`).
+  std::shared_ptr<const Texture> texture(std::string_view file) {
+    const std::filesystem::path given{std::string(file)};
+    const std::filesystem::path path =
+        given.is_absolute() ? given : std::filesystem::path(scene_.source).parent_path() / given;
+    const std::string key = path.lexically_normal().string();
+    if (const auto it = textures_.find(key); it != textures_.end()) return it->second;
+    try {
+      auto image = std::make_shared<const Texture>(read_texture(path, std::string(file)));
+      textures_.emplace(key, image);
+      return image;
+    } catch (const ImageReadError& error) {
+      fail(detail::concat({"texture ", quoted(file), ": ", error.what()}));
+    }
+  }
+
   static constexpr int kLinesPerReport = 1 << 16;
 
   SceneReadCallback progress_;
@@ -588,6 +628,7 @@ class Parser {
   int line_ = 0;
   std::vector<std::string_view> tokens_;  // reused across lines: no allocation per line
   std::unordered_map<std::string, NamedMaterial, StringHash, std::equal_to<>> materials_;
+  std::unordered_map<std::string, std::shared_ptr<const Texture>> textures_;
 };
 
 }  // namespace detail::scene_reader

@@ -9,6 +9,7 @@
 // names, and inline keys make each line self-contained, so a generated file can be cut and pasted
 // freely.
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -26,7 +27,8 @@
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
-/// A description that the format cannot express (a number that is not finite).
+/// A description that the format cannot express (a number that is not finite, a texture name
+/// that is no token of the format).
 class SceneWriteError : public Error {
  public:
   using Error::Error;
@@ -119,6 +121,27 @@ inline void append_material(std::string& out, const Material& m) {
   }
 }
 
+/// A sphere's image by the name it was read with (the path as its scene file gave it, relative
+/// to that file's directory) and its placement where not the default.
+inline void append_texture(std::string& out, const SphereDescription& sphere) {
+  const std::string& name = sphere.texture->name();
+  const bool writable = !name.empty() && std::none_of(name.begin(), name.end(), [](char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '#' || c == '\0';
+  });
+  if (!writable)
+    throw SceneWriteError(
+        "a texture's name must be a path without spaces, tabs, line ends or '#'"
+        " to be written in a scene file, got '" +
+        name + "'");
+  out += " texture=";
+  out += name;
+  const TexturePlacement defaults{};
+  if (!same_bits(sphere.texture_placement.axis, defaults.axis))
+    append_key(out, "texture_axis", sphere.texture_placement.axis);
+  if (!same_bits(sphere.texture_placement.turn_degrees, defaults.turn_degrees))
+    append_key(out, "texture_turn", sphere.texture_placement.turn_degrees);
+}
+
 /// Formats the scene line by line into `buffer`, handing it to `sink` whenever it passes
 /// `chunk` bytes and once at the end, so that a million-sphere scene can stream to a file
 /// without first being held whole in memory.
@@ -165,10 +188,11 @@ void emit_scene(const SceneDescription& scene, std::string& buffer, std::size_t 
     append_key(buffer, "center", sphere.center);
     append_key(buffer, "radius", sphere.radius);
     append_material(buffer, sphere.material);
-    if (sphere.shading != ShadingKind::uniform) {
+    if (sphere.shading != ShadingKind::uniform && sphere.shading != ShadingKind::texture) {
       buffer += " shading=";
       buffer += to_string(sphere.shading);
     }
+    if (sphere.texture) append_texture(buffer, sphere);
     buffer += '\n';
     if (buffer.size() >= chunk) sink(buffer);
   }

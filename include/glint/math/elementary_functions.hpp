@@ -1,8 +1,8 @@
 #pragma once
-// sin, cos, log and exp of glint's own, one polynomial for every width: the C library's functions
-// differ between libraries, versions and machines, and a vectorised library's between its scalar
-// and vector forms, so a pixel that depended on them would depend on more than the scene, the
-// settings and the seed. Accurate to about an ulp over the arguments the warps use.
+// sin, cos, atan2, log and exp of glint's own, one polynomial for every width: the C library's
+// functions differ between libraries, versions and machines, and a vectorised library's between its
+// scalar and vector forms, so a pixel that depended on them would depend on more than the scene,
+// the settings and the seed. Accurate to about an ulp over the arguments the warps use.
 
 #include <bit>
 #include <cmath>
@@ -39,6 +39,28 @@ inline void sincos(F x, F& sine, F& cosine) {
   const I cos_sign = ((quadrant + 1) & 2) << 30;
   sine = float_of_bits(bits_of(s) ^ sin_sign);
   cosine = float_of_bits(bits_of(c) ^ cos_sign);
+}
+
+/// atan2(y, x) in [-pi, pi] for finite y and x (0 where both are zero): the smaller magnitude
+/// over the larger gives an angle in [0, pi/4], reduced to [-pi/8, pi/8] by the addition formula
+/// around pi/4, then Cephes atanf's odd polynomial; the octant is restored by reflections, which
+/// are exact. The mapping of directions to a texture's coordinates reads it.
+template <FloatType F>
+inline F atan2(F y, F x) {
+  const F ax = abs(x), ay = abs(y);
+  const F larger = max(ax, ay);
+  const MaskFor<F> origin = larger == 0.0f;
+  const F a = select(origin, splat<F>(0.0f), min(ax, ay) / select(origin, splat<F>(1.0f), larger));
+  const MaskFor<F> upper = a > 0.414213562373095f;  // tan(pi/8)
+  const F t = select(upper, (a - 1.0f) / (a + 1.0f), a);
+  const F z = t * t;
+  const F p =
+      ((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z - 3.33329491539e-1f;
+  F angle = p * z * t + t;
+  angle = select(upper, angle + 0.785398163397448f, angle);
+  angle = select(ay > ax, 1.57079632679490f - angle, angle);
+  angle = select(x < 0.0f, 3.14159265358979f - angle, angle);
+  return copysign(angle, y);
 }
 
 /// The natural logarithm of x for positive normal x: x = m 2^e with m in [sqrt(1/2), sqrt(2)),

@@ -11,6 +11,7 @@
 #include "glint/math/vector.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/scene/material.hpp"
+#include "glint/scene/sphere_texture.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
@@ -113,13 +114,20 @@ concept Antialiasing = requires(Vec2 u, float sigma) {
   { A::footprint(sigma) } -> std::same_as<float>;
 };
 
-/// A sphere's diffuse colour at a point, given the sphere's base colour and the unit direction
-/// from its centre. `supports` lists the closed set of kinds a build handles; scenes using
-/// another kind are rejected when loaded.
+/// Where on a sphere shading asks for the diffuse colour.
+struct ShadingPoint {
+  Vec3 direction;  ///< the unit direction from the sphere's centre
+  /// The sphere's image (ShadingKind::texture), placed; null for the other kinds.
+  const SphereTexture* texture = nullptr;
+};
+
+/// A sphere's diffuse colour at a point, given the sphere's base colour and where the point is.
+/// `supports` lists the closed set of kinds a build handles; scenes using another kind are
+/// rejected when loaded.
 template <typename H>
-concept SphereShading = requires(ShadingKind kind, Color base, Vec3 direction) {
+concept SphereShading = requires(ShadingKind kind, Color base, const ShadingPoint& at) {
   { H::supports(kind) } -> std::same_as<bool>;
-  { H::color(kind, base, direction) } -> std::same_as<Color>;
+  { H::color(kind, base, at) } -> std::same_as<Color>;
 };
 
 /// When a path stops: at the maximum depth only, or earlier by Russian roulette.

@@ -11,10 +11,10 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 /// One colour per sphere; the cheapest policy, and scenes asking for more are rejected.
 struct UniformShading {
   static bool supports(ShadingKind kind) { return kind == ShadingKind::uniform; }
-  static Color color(ShadingKind, Color base, Vec3) { return base; }
+  static Color color(ShadingKind, Color base, const ShadingPoint&) { return base; }
 };
 
-/// The built-in set: uniform, the report's eight-coloured sphere, and a checkerboard.
+/// The built-in set: uniform, the report's eight-coloured sphere, a checkerboard and an image.
 /// `custom` is left to user-defined policies (see examples/custom_shading).
 struct BuiltinShading {
   static bool supports(ShadingKind kind) { return kind != ShadingKind::custom; }
@@ -44,14 +44,16 @@ struct BuiltinShading {
     return longitude_odd != latitude_odd ? Color(1.0f) - base : base;
   }
 
-  static Color color(ShadingKind kind, Color base, Vec3 direction) {
+  static Color color(ShadingKind kind, Color base, const ShadingPoint& at) {
     switch (kind) {
       case ShadingKind::uniform:
         return base;
       case ShadingKind::octants:
-        return octant_color(base, direction);
+        return octant_color(base, at.direction);
       case ShadingKind::checker:
-        return checker_color(base, direction);
+        return checker_color(base, at.direction);
+      case ShadingKind::texture:
+        return at.texture ? base * at.texture->color(at.direction) : base;
       case ShadingKind::custom:
         return base;  // not supported: scenes using it are rejected
     }

@@ -94,11 +94,14 @@ struct BasicSurfaceInteraction {
   UIntFor<F> sphere;
   SurfaceLanes<F> surface;
   detail::BasicInterface<V3> at;
+  /// The scene the spheres belong to: what shading looks up beyond their properties (textures).
+  const Scene* scene = nullptr;
 
   /// The hits at distances `t` along `rays` of spheres `sphere`, in the lanes of `lanes`.
   static BasicSurfaceInteraction at_hit(const Scene& scene, const V3& origin, const V3& direction,
                                         F t, UIntFor<F> sphere, MaskFor<F> lanes) {
     BasicSurfaceInteraction it;
+    it.scene = &scene;
     it.sphere = sphere;
     it.surface = gather_surfaces<F>(scene, sphere, lanes);
     it.point = origin + t * direction;

@@ -20,9 +20,10 @@ enum class ShadingKind : std::uint8_t {
   uniform,  ///< one colour over the whole sphere
   octants,  ///< the report's eight-coloured sphere: one colour per octant around the centre
   checker,  ///< a latitude/longitude checkerboard of the colour and its complement
+  texture,  ///< an image wrapped around the sphere, times the colour (scene/sphere_texture.hpp)
   custom,   ///< whatever the renderer variant's own shading policy defines (none built in)
 };
-inline constexpr int kShadingKindCount = 4;
+inline constexpr int kShadingKindCount = 5;
 
 constexpr std::string_view to_string(ShadingKind kind) {
   switch (kind) {
@@ -32,6 +33,8 @@ constexpr std::string_view to_string(ShadingKind kind) {
       return "octants";
     case ShadingKind::checker:
       return "checker";
+    case ShadingKind::texture:
+      return "texture";
     case ShadingKind::custom:
       return "custom";
   }

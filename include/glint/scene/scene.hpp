@@ -29,6 +29,7 @@
 #include "glint/scene/emitters.hpp"
 #include "glint/scene/inclusion_tree.hpp"
 #include "glint/scene/scene_description.hpp"
+#include "glint/scene/sphere_texture.hpp"
 #include "glint/scene/validate.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
@@ -102,6 +103,12 @@ class Scene {
           sphere.material, sphere.center, tree.outside_ior[i], sphere.shading,
           sphere.material.is_fully_transparent(), sphere.material.has_mirror_finish(), emitter});
       scene.sphere_lines_.push_back(sphere.line);
+      if (sphere.shading == ShadingKind::texture) {
+        if (scene.sphere_textures_.empty())
+          scene.sphere_textures_.assign(description.spheres.size(), kNoTexture);
+        scene.sphere_textures_[i] = static_cast<std::uint32_t>(scene.textures_.size());
+        scene.textures_.emplace_back(sphere.texture, sphere.texture_placement);
+      }
     }
     scene.hierarchy_ = SphereBvh(std::move(hierarchy_spheres));
     scene.emitters_ = EmitterTable(std::move(emitters));
@@ -142,6 +149,13 @@ class Scene {
 
   const SurfaceProperties& surface(std::uint32_t sphere) const { return surfaces_[sphere]; }
   std::size_t sphere_count() const { return surfaces_.size(); }
+  /// The images on the spheres of ShadingKind::texture, placed, one per such sphere.
+  const std::vector<SphereTexture>& textures() const { return textures_; }
+  /// The image on a sphere of ShadingKind::texture, placed; null for any other sphere.
+  const SphereTexture* sphere_texture(std::uint32_t sphere) const {
+    if (sphere >= sphere_textures_.size() || sphere_textures_[sphere] == kNoTexture) return nullptr;
+    return &textures_[sphere_textures_[sphere]];
+  }
   /// The line of the scene file that defined a sphere (0 if it did not come from a file).
   int sphere_line(std::uint32_t sphere) const { return sphere_lines_[sphere]; }
   const std::vector<PointLight>& lights() const { return lights_; }
@@ -490,6 +504,10 @@ class Scene {
 #endif
   std::vector<SurfaceProperties> surfaces_;
   std::vector<int> sphere_lines_;
+  static constexpr std::uint32_t kNoTexture = std::numeric_limits<std::uint32_t>::max();
+  std::vector<SphereTexture> textures_;  ///< one per textured sphere
+  /// Each sphere's index in textures_ (kNoTexture: none); empty in a scene without textures.
+  std::vector<std::uint32_t> sphere_textures_;
 };
 
 }  // namespace glint::inline GLINT_ISA_NAMESPACE

@@ -4,12 +4,14 @@
 // Scene (scene/scene.hpp) is built from it once. Every element keeps the line it came from so
 // that errors found later (e.g. overlapping glass) can still point into the file.
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "glint/instruction_set.hpp"
 #include "glint/scene/image_settings.hpp"
 #include "glint/scene/material.hpp"
+#include "glint/scene/sphere_texture.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
@@ -41,6 +43,10 @@ struct SphereDescription {
   float radius = 1.0f;
   Material material{};
   ShadingKind shading = ShadingKind::uniform;
+  /// The image of ShadingKind::texture (null for the other kinds), shared by the spheres that
+  /// show the same file, and how it lies on the sphere.
+  std::shared_ptr<const Texture> texture;
+  TexturePlacement texture_placement{};
   int line = 0;
 };
 

@@ -183,6 +183,16 @@ inline void check_light(const SceneDescription& scene, const PointLight& light) 
     fail("light color must be finite and non-negative");
 }
 
+/// What is wrong with a sphere's shading kind given whether it has an image ("" if nothing).
+inline std::string texture_shading_problem(ShadingKind shading, bool has_texture) {
+  if (shading == ShadingKind::texture && !has_texture)
+    return "shading=texture needs an image: texture=FILE";
+  if (has_texture && shading != ShadingKind::texture)
+    return concat(
+        {"a texture is shown by shading=texture, not shading=", std::string(to_string(shading))});
+  return {};
+}
+
 inline void check_sphere(const SceneDescription& scene, const SphereDescription& sphere) {
   const auto fail = [&](const std::string& what) {
     throw SceneError(scene.source, sphere.line, what);
@@ -197,6 +207,13 @@ inline void check_sphere(const SceneDescription& scene, const SphereDescription&
     fail(concat({"sphere radius must be at most ", format_number(limits::max_sphere_radius),
                  " (the scene format's limit), got ", format_number(sphere.radius)}));
   check_material(scene, sphere.material, sphere.line);
+  if (const std::string problem = texture_shading_problem(sphere.shading, bool(sphere.texture));
+      !problem.empty())
+    fail(problem);
+  const TexturePlacement& placement = sphere.texture_placement;
+  if (!finite(placement.axis) || placement.axis == Vec3(0.0f))
+    fail("texture_axis must be a finite direction, not zero");
+  if (!std::isfinite(placement.turn_degrees)) fail("texture_turn must be finite");
 }
 
 }  // namespace detail

@@ -42,10 +42,15 @@ class ReportMaterial {
       const M patterned = diffuse && s_.shading != std::int32_t(ShadingKind::uniform);
       if (any(patterned))
         for (int i = 0; i < kLanesOf<F>; ++i)
-          if (lane(patterned, i))
-            set_lane(color, i,
-                     C::sphere_shading::color(ShadingKind(lane(s_.shading, i)), lane(color, i),
-                                              lane(interaction.outward_normal, i)));
+          if (lane(patterned, i)) {
+            const auto kind = ShadingKind(lane(s_.shading, i));
+            const ShadingPoint point{
+                lane(interaction.outward_normal, i),
+                kind == ShadingKind::texture && interaction.scene
+                    ? interaction.scene->sphere_texture(lane(interaction.sphere, i))
+                    : nullptr};
+            set_lane(color, i, C::sphere_shading::color(kind, lane(color, i), point));
+          }
       albedo_ = select(diffuse, s_.diffuse * color, albedo_);
     }
   }
