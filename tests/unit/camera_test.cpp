@@ -368,3 +368,102 @@ TEST_CASE("validate rejects a bad aperture or focus", "[camera][validate]") {
   s.camera.focus_distance = 12.0f;
   CHECK_NOTHROW(glint::validate(s));
 }
+
+namespace {
+
+glint::CameraDescription panorama_camera() {
+  glint::CameraDescription description = oblique_camera();
+  description.projection = glint::Projection::equirectangular;
+  return description;
+}
+
+}  // namespace
+
+TEST_CASE("camera: the panorama's film covers every direction, middle ahead, top up", "[camera]") {
+  const glint::CameraDescription description = panorama_camera();
+  const glint::Camera camera(description, 64, 32);
+  const Vec3 forward = glm::normalize(description.look_at - description.position);
+  const Vec3 right = glm::normalize(glm::cross(forward, description.up));
+  const Vec3 up = glm::cross(right, forward);
+  const auto direction = [&](float x, float y) { return camera.ray_through(Vec2(x, y)).direction; };
+  // The chord between unit vectors: the angle, where acos of a float cosine near 1 cannot resolve
+  // less than about 3e-4.
+  const auto angle_between = [](const Vec3& a, const Vec3& b) {
+    return double(glm::length(glm::normalize(a) - glm::normalize(b)));
+  };
+  CHECK(angle_between(direction(32.0f, 16.0f), forward) < 1e-6);
+  CHECK(angle_between(direction(48.0f, 16.0f), right) < 1e-6);    // three quarters: right
+  CHECK(angle_between(direction(16.0f, 16.0f), -right) < 1e-6);   // one quarter: left
+  CHECK(angle_between(direction(0.0f, 16.0f), -forward) < 1e-6);  // the edges: behind
+  CHECK(angle_between(direction(64.0f, 16.0f), -forward) < 1e-6);
+  CHECK(angle_between(direction(32.0f, 0.0f), up) < 1e-6);  // the top row: up
+  CHECK(angle_between(direction(32.0f, 32.0f), -up) < 1e-6);
+  CHECK(angle_between(direction(32.0f, 8.0f), forward + up) < 1e-6);  // 45 degrees up
+  // Its rays start at distance `near`, whatever their direction, and no lens is drawn.
+  glint::CameraDescription near_description = description;
+  near_description.near = 0.75f;
+  const glint::Camera near_camera(near_description, 64, 32);
+  CHECK(near_camera.ray_through(Vec2(3.0f, 29.0f)).t_min == 0.75f);
+  CHECK_FALSE(near_camera.has_lens());
+}
+
+TEST_CASE("camera: the panorama connects a point back to its film position, in every direction",
+          "[camera]") {
+  glint::CameraDescription description = panorama_camera();
+  description.near = 0.5f;
+  const glint::Camera camera(description, 64, 32);
+  for (const Vec2 film : {Vec2(0.5f, 0.5f), Vec2(31.7f, 20.2f), Vec2(63.2f, 31.1f),
+                          Vec2(10.0f, 3.0f), Vec2(50.0f, 27.0f)}) {
+    const glint::Ray ray = camera.ray_through(film);
+    for (const float t : {1.0f, 7.5f, 300.0f}) {
+      const std::optional<glint::CameraConnection> c = camera.connect(ray.at(t));
+      REQUIRE(c.has_value());
+      CHECK(c->film.x == Approx(film.x).margin(2e-3));
+      CHECK(c->film.y == Approx(film.y).margin(2e-3));
+      CHECK(c->distance == Approx(t).epsilon(1e-5));
+      CHECK(c->unclipped_distance == Approx(t - 0.5f).epsilon(1e-5));
+      CHECK(glm::dot(c->direction, ray.direction) == Approx(-1.0).margin(1e-6));
+      CHECK(c->lens_point == description.position);
+    }
+  }
+  // Within `near`: not seen; behind the viewing direction: seen.
+  const glint::Ray ahead = camera.ray_through(Vec2(32.0f, 16.0f));
+  CHECK_FALSE(camera.connect(ahead.at(0.4f)).has_value());
+  CHECK(camera.connect(ahead.at(-2.0f)).has_value());
+}
+
+TEST_CASE("camera: the panorama's density integrates to the film's pixels over the sphere",
+          "[camera]") {
+  // Film points drawn with density one per pixel area give ray directions of density
+  // solid_angle_density; over every direction it integrates to the film's area, width x height
+  // pixels. By the midpoint rule in the polar angle from up and the longitude about it.
+  const glint::CameraDescription description = panorama_camera();
+  const int width = 40, height = 24;
+  const glint::Camera camera(description, width, height);
+  const Vec3 forward = glm::normalize(description.look_at - description.position);
+  const Vec3 right = glm::normalize(glm::cross(forward, description.up));
+  const Vec3 up = glm::cross(right, forward);
+  constexpr int kSteps = 720;
+  double sum = 0.0;
+  for (int i = 0; i < kSteps; ++i)
+    for (int j = 0; j < 2 * kSteps; ++j) {
+      const double theta = (i + 0.5) * M_PI / kSteps, phi = (j + 0.5) * M_PI / kSteps;
+      const Vec3 d = float(std::cos(theta)) * up +
+                     float(std::sin(theta) * std::cos(phi)) * forward +
+                     float(std::sin(theta) * std::sin(phi)) * right;
+      sum += camera.solid_angle_density(d) * std::sin(theta) * (M_PI / kSteps) * (M_PI / kSteps);
+    }
+  CHECK(sum == Approx(double(width) * height).epsilon(1e-4));
+}
+
+TEST_CASE("validate rejects a lens on the panorama and reads its projection",
+          "[camera][validate]") {
+  glint::SceneDescription scene;
+  scene.camera = panorama_camera();
+  scene.camera.aperture = 0.5f;
+  scene.camera.line = 4;
+  CHECK_THROWS_WITH(glint::validate(scene),
+                    Catch::Contains("a thin lens (aperture) is a perspective camera's"));
+  scene.camera.aperture = 0.0f;
+  CHECK_NOTHROW(glint::validate(scene));
+}

@@ -166,9 +166,9 @@ inline constexpr auto kSphereKeys = [] {
 
 enum ImageKey : int { kWidth, kHeight, kSpp, kMaxDepthKey };
 inline constexpr std::string_view kImageKeys[] = {"width", "height", "spp", "max_depth"};
-enum CameraKey : int { kPosition, kLookAt, kUp, kFov, kNear, kAperture, kFocus };
-inline constexpr std::string_view kCameraKeys[] = {"position", "look_at",  "up",   "fov",
-                                                   "near",     "aperture", "focus"};
+enum CameraKey : int { kPosition, kLookAt, kUp, kFov, kNear, kAperture, kFocus, kProjection };
+inline constexpr std::string_view kCameraKeys[] = {"position", "look_at",  "up",    "fov",
+                                                   "near",     "aperture", "focus", "projection"};
 enum LightKey : int { kLightPosition, kIntensity, kLightColor };
 inline constexpr std::string_view kLightKeys[] = {"position", "intensity", "color"};
 inline constexpr std::string_view kAntialiasKeys[] = {"sigma"};
@@ -491,6 +491,7 @@ class Parser {
     if (f.has(kFov)) camera.fov_degrees = number("fov", f[kFov]);
     if (f.has(kNear)) camera.near = number("near", f[kNear]);
     if (f.has(kAperture)) camera.aperture = number("aperture", f[kAperture]);
+    if (f.has(kProjection)) camera.projection = projection(f[kProjection]);
     if (f.has(kFocus)) {
       camera.focus_distance = number("focus", f[kFocus]);
       if (!(camera.focus_distance > 0.0f))
@@ -591,6 +592,14 @@ class Parser {
       sphere.texture_placement.turn_degrees = number("texture_turn", f[kTextureTurn]);
     detail::check_sphere(scene_, sphere);
     scene_.spheres.push_back(sphere);
+  }
+
+  Projection projection(std::string_view text) const {
+    for (int i = 0; i < kProjectionCount; ++i)
+      if (text == to_string(Projection(i))) return Projection(i);
+    fail(detail::concat({"unknown projection ", quoted(text), " (expected ",
+                         to_string(Projection::perspective), " or ",
+                         to_string(Projection::equirectangular), ")"}));
   }
 
   ShadingKind shading(std::string_view text) const {

@@ -167,6 +167,10 @@ void emit_scene(const SceneDescription& scene, std::string& buffer, std::size_t 
   append_key(buffer, "near", camera.near);
   if (camera.aperture > 0.0f) append_key(buffer, "aperture", camera.aperture);
   if (camera.focus_distance > 0.0f) append_key(buffer, "focus", camera.focus_distance);
+  if (camera.projection != Projection::perspective) {
+    buffer += " projection=";
+    buffer += to_string(camera.projection);
+  }
 
   buffer += "\nantialias";
   append_key(buffer, "sigma", scene.antialias_sigma);

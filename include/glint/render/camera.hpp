@@ -1,9 +1,9 @@
 #pragma once
 // The camera: a pinhole, or a thin lens (an aperture of radius r focused at distance f) where the
-// scene gives an aperture. Every estimator asks it the same things: a ray through a film point
-// (from a point of the lens drawn from the sampler, with a lens), the density of a ray's
-// direction, and for light paths where a scene point lands on the film, with the camera's
-// importance there (connect).
+// scene gives an aperture, or an equirectangular panorama of every direction around a point. Every
+// estimator asks it the same things: a ray through a film point (from a point of the lens drawn
+// from the sampler, with a lens), the density of a ray's direction, and for light paths where a
+// scene point lands on the film, with the camera's importance there (connect).
 //
 // A thin lens is a pinhole at a lens point e drawn uniformly on the aperture, whose rays are
 // bent to pass through the plane in focus where the central ray does: film point x sees along
@@ -14,6 +14,12 @@
 // the pinhole's formula from e: the lens's density cancels, and every strategy of a path draws
 // e alike, so the bidirectional estimators' weights need no term for it. With no aperture the
 // lens point is the centre, bit for bit the pinhole's arithmetic, and no value is drawn for it.
+//
+// The equirectangular camera maps film (x, y) to the direction of math/equirectangular.hpp at
+// (x / width, y / height) in its frame (right, up, forward): the film's middle looks forward, its
+// right half to the right, its top row up; the image it makes is what an environment lookup in
+// the same frame reads back. A unit of film area there covers 2 pi^2 sin(theta) / (width
+// height) of solid angle, theta the angle from up, and its rays start at distance `near`.
 
 #include <cmath>
 #include <optional>
@@ -21,6 +27,7 @@
 #include "glint/geometry/ray.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/math/elementary_functions.hpp"
+#include "glint/math/equirectangular.hpp"
 #include "glint/math/sampling.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/scene/scene_description.hpp"
@@ -54,7 +61,9 @@ class Camera {
   Camera(const CameraDescription& description, int width, int height)
       : position_(description.position),
         near_(description.near),
-        lens_radius_(description.aperture),
+        lens_radius_(description.projection == Projection::perspective ? description.aperture
+                                                                       : 0.0f),
+        equirectangular_(description.projection == Projection::equirectangular),
         focus_(description.focus_distance > 0.0f
                    ? description.focus_distance
                    : glm::length(description.look_at - description.position)) {
@@ -65,10 +74,18 @@ class Camera {
     float sin_half, cos_half;
     sincos(0.5f * description.fov_degrees * kPi / 180.0f, sin_half, cos_half);
     const float tan_half = sin_half / cos_half;
-    pixel_scale_ = 2.0f * tan_half / static_cast<float>(height);
+    pixel_scale_ = equirectangular_ ? kPi / static_cast<float>(height)
+                                    : 2.0f * tan_half / static_cast<float>(height);
     half_width_ = 0.5f * static_cast<float>(width);
     half_height_ = 0.5f * static_cast<float>(height);
+    // The solid angle of a unit of film area at sin(theta) = 1.
+    panorama_solid_angle_ =
+        2.0f * kPi * kPi / (static_cast<float>(width) * static_cast<float>(height));
   }
+
+  /// Whether the camera is an equirectangular panorama (Projection::equirectangular): its film
+  /// wraps around (panorama_direction).
+  bool is_equirectangular() const { return equirectangular_; }
 
   /// Whether the camera has an aperture: its rays leave from points of the lens, drawn from the
   /// sampler (two values per ray and per connection).
@@ -100,6 +117,13 @@ class Camera {
   template <typename V2>
   void rays_through(const V2& film, Vec3For<FloatOf<V2>>& direction, FloatOf<V2>& t_min) const {
     using V3 = Vec3For<FloatOf<V2>>;
+    if (equirectangular_) {
+      // Lane by lane, each lane one film point's arithmetic.
+      for (int i = 0; i < kLanesOf<FloatOf<V2>>; ++i)
+        set_lane(direction, i, panorama_direction(Vec2(lane(film.x, i), lane(film.y, i))));
+      t_min = splat<FloatOf<V2>>(near_);
+      return;
+    }
     const FloatOf<V2> sx = (film.x - half_width_) * pixel_scale_;
     const FloatOf<V2> sy = (half_height_ - film.y) * pixel_scale_;
     const V3 forward = splat_vector<V3>(forward_);
@@ -130,13 +154,20 @@ class Camera {
   }
 
   const Vec3& position() const { return position_; }
-  /// The size of a pixel on the plane at distance one in the viewing direction.
+  /// The size of a pixel on the plane at distance one in the viewing direction; for the
+  /// panorama, the angle a pixel spans.
   float pixel_size() const { return pixel_scale_; }
 
   /// Density per unit solid angle of a ray in unit `direction` when its film point is drawn
   /// with density one per pixel area: 1 / (p^2 cos^3(theta)), p the size of a pixel on the plane
   /// at distance 1 and theta the angle to the viewing direction (zero behind the camera).
   float solid_angle_density(const Vec3& direction) const {
+    if (equirectangular_) {
+      const float across = glm::dot(direction, right_), ahead = glm::dot(direction, forward_);
+      const float sine = std::sqrt(across * across + ahead * ahead);
+      if (!(sine > 0.0f)) return 0.0f;
+      return 1.0f / (panorama_solid_angle_ * sine);
+    }
     const float cosine = glm::dot(direction, forward_);
     if (!(cosine > 0.0f)) return 0.0f;
     return 1.0f / solid_angle_per_pixel(cosine);
@@ -160,6 +191,7 @@ class Camera {
  private:
   /// connect through the lens point `disc` (along right and up) from the centre.
   std::optional<CameraConnection> connect_through(const Vec3& point, Vec2 disc) const {
+    if (equirectangular_) return connect_panorama(point);
     const Vec3 lens_point = position_ + (disc.x * right_ + disc.y * up_);
     const Vec3 offset = point - lens_point;
     const float depth = glm::dot(offset, forward_);
@@ -177,6 +209,42 @@ class Camera {
                             importance, lens_point};
   }
 
+  /// The panorama's direction at film point `film`, on the film or off it (a pixel filter's
+  /// offsets reach past the edges): the film is the sphere of directions, so its left and right
+  /// edges meet and each of its top and bottom edges folds over a pole onto itself, half a turn
+  /// round (FilmSplatter::add does the same for light landing near an edge).
+  Vec3 panorama_direction(Vec2 film) const {
+    const float width = 2.0f * half_width_, height = 2.0f * half_height_;
+    float y = film.y - 2.0f * height * std::floor(film.y / (2.0f * height));  // [0, 2 height)
+    float x = film.x;
+    if (y > height) {
+      y = 2.0f * height - y;
+      x += half_width_;
+    }
+    x -= width * std::floor(x / width);  // [0, width)
+    const Vec3 d = equirectangular_direction(Vec2(x / width, std::fmin(y / height, 1.0f)));
+    return glm::normalize(d.x * right_ + d.y * up_ + d.z * forward_);
+  }
+
+  /// connect for the panorama: any direction, beyond `near`.
+  std::optional<CameraConnection> connect_panorama(const Vec3& point) const {
+    const Vec3 offset = point - position_;
+    const float distance2 = glm::dot(offset, offset);
+    const float distance = std::sqrt(distance2);
+    if (!(distance > near_) || !(distance > 0.0f)) return std::nullopt;
+    const Vec3 direction = offset / distance;
+    const Vec2 uv = equirectangular_uv(
+        Vec3(glm::dot(direction, right_), glm::dot(direction, up_), glm::dot(direction, forward_)));
+    const float density = solid_angle_density(direction);
+    if (!(density > 0.0f)) return std::nullopt;
+    return CameraConnection{Vec2(uv.x * 2.0f * half_width_, uv.y * 2.0f * half_height_),
+                            -direction,
+                            distance,
+                            distance - near_,
+                            density / distance2,
+                            position_};
+  }
+
   /// The solid angle of the rays through one pixel's area of film at angle theta to the viewing
   /// direction (cos(theta) = `cosine`): p^2 cos^3(theta).
   float solid_angle_per_pixel(float cosine) const {
@@ -187,6 +255,8 @@ class Camera {
   Vec3 forward_{}, right_{}, up_{};
   float near_;
   float lens_radius_;
+  bool equirectangular_;
+  float panorama_solid_angle_ = 0.0f;
   float focus_;
   float pixel_scale_ = 0.0f;
   float half_width_ = 0.0f, half_height_ = 0.0f;

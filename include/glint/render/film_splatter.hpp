@@ -21,8 +21,11 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 template <RenderConfig C>
 class FilmSplatter {
  public:
-  explicit FilmSplatter(const RenderSettings& settings)
-      : width_(settings.width),
+  /// `panorama`: the film is an equirectangular camera's (Camera::is_equirectangular), which
+  /// wraps around: light landing near an edge also lands where the film continues past it.
+  explicit FilmSplatter(const RenderSettings& settings, bool panorama = false)
+      : panorama_(panorama),
+        width_(settings.width),
         height_(settings.height),
         sigma_(settings.antialias_sigma),
         footprint_(C::antialiasing::footprint(settings.antialias_sigma)),
@@ -42,6 +45,30 @@ class FilmSplatter {
       ++counters.invalid_samples;
       return;
     }
+    if (!panorama_) return add_at(splats, film, light, weight, counters);
+    // Every place the panorama's film shows the same direction near the film: shifted by whole
+    // widths, and folded over a pole (mirrored in the edge, half a width round), as
+    // Camera::panorama_direction unfolds the film points of a pixel filter.
+    const float width = float(width_), height = float(height_);
+    const float reach = footprint_ + 1.0f;
+    for (int fold = 0; fold < 2; ++fold) {
+      const float y = fold == 0 ? film.y : -film.y;
+      const float x = fold == 0 ? film.x : film.x + 0.5f * width;
+      for (float y_image = y - 2.0f * height * std::ceil((y + reach) / (2.0f * height));
+           y_image < height + reach; y_image += 2.0f * height) {
+        if (y_image <= -reach) continue;
+        for (float x_image = x - width * std::ceil((x + reach) / width); x_image < width + reach;
+             x_image += width)
+          if (x_image > -reach) add_at(splats, Vec2(x_image, y_image), light, weight, counters);
+      }
+    }
+  }
+
+ private:
+  /// add, for the film as a plane.
+  template <typename Weight>
+  void add_at(SplatSums& splats, Vec2 film, const Color& light, Weight& weight,
+              TraceCounters& counters) const {
     // The pixels whose centres (x + 0.5, y + 0.5) lie within the footprint of the point.
     const float x_low = std::ceil(film.x - 0.5f - footprint_);
     const float x_high = std::floor(film.x - 0.5f + footprint_);
@@ -66,7 +93,7 @@ class FilmSplatter {
       }
   }
 
- private:
+  bool panorama_;
   int width_, height_;
   float sigma_;
   float footprint_;

@@ -4,8 +4,10 @@
 // Scene (scene/scene.hpp) is built from it once. Every element keeps the line it came from so
 // that errors found later (e.g. overlapping glass) can still point into the file.
 
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "glint/instruction_set.hpp"
@@ -19,6 +21,17 @@ struct ImageDescription : ImageSettings {
   int line = 0;
 };
 
+/// How a camera maps its film to directions.
+enum class Projection : std::uint8_t {
+  perspective,      ///< a pinhole or a thin lens: a plane of film, `fov` high
+  equirectangular,  ///< every direction: the film's columns are longitudes, its rows latitudes
+};
+inline constexpr int kProjectionCount = 2;
+
+constexpr std::string_view to_string(Projection projection) {
+  return projection == Projection::perspective ? "perspective" : "equirectangular";
+}
+
 struct CameraDescription {
   Vec3 position{0.0f, 0.0f, 55.0f};
   Vec3 look_at{0.0f, 0.0f, 0.0f};
@@ -28,6 +41,9 @@ struct CameraDescription {
   float aperture = 0.0f;      ///< the lens's radius; 0: a pinhole
   /// The distance along the viewing direction of the plane in focus; 0: that of look_at.
   float focus_distance = 0.0f;
+  /// Equirectangular: a 360-degree panorama around the position, the film's middle towards
+  /// look_at, its top row towards up (fov, aperture and focus do not apply).
+  Projection projection = Projection::perspective;
   int line = 0;
 };
 

@@ -144,6 +144,8 @@ inline void check_camera(const SceneDescription& scene) {
   if (!(camera.aperture >= 0.0f && camera.aperture <= limits::max_coordinate))
     fail(concat({"camera aperture must be between 0 and ", format_number(limits::max_coordinate),
                  ", got ", format_number(camera.aperture)}));
+  if (camera.projection == Projection::equirectangular && camera.aperture > 0.0f)
+    fail("a thin lens (aperture) is a perspective camera's; an equirectangular one is a pinhole");
   // 0 stands for the distance to look_at (a file cannot write it: the reader refuses it).
   if (!(camera.focus_distance >= 0.0f && camera.focus_distance <= limits::max_coordinate))
     fail(
