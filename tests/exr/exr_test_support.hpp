@@ -10,30 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "../support/scratch_directory.hpp"
 #include "glint/image/film.hpp"
 
 namespace glint::exr_test {
 
-/// A fresh directory per test case and process, removed again at the end.
-class ScratchDirectory {
- public:
-  explicit ScratchDirectory(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() /
-              ("glint-exr-" + name + "-" + std::to_string(::getpid()))) {
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDirectory() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  ScratchDirectory(const ScratchDirectory&) = delete;
-  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
+using glint_test::ScratchDirectory;
 
 inline std::uint32_t bits(float v) {
   std::uint32_t b;

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/scratch_directory.hpp"
 #include "glint/io/image_reader.hpp"
 #include "glint/io/image_writer.hpp"
 #include "stb_image.h"
@@ -22,25 +23,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// A fresh directory per test case and process, removed again at the end.
-class ScratchDirectory {
- public:
-  explicit ScratchDirectory(const std::string& name)
-      : path_(fs::temp_directory_path() / ("glint-" + name + "-" + std::to_string(::getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDirectory() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  ScratchDirectory(const ScratchDirectory&) = delete;
-  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using glint_test::ScratchDirectory;
 
 /// IEC 61966-2-1 in double precision.
 double srgb_encode(double linear) {

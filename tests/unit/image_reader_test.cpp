@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "../support/scratch_directory.hpp"
 #include "glint/error.hpp"
 #include "glint/io/image_reader.hpp"
 #include "glint/io/image_writer.hpp"
@@ -28,18 +29,6 @@ namespace {
 
 /// Far below any image the test files claim, and far above what reading a header takes.
 constexpr long kBoundKb = 64 * 1024;
-
-struct Scratch {
-  fs::path path = fs::temp_directory_path() / ("glint-image-reader-" + std::to_string(getpid()));
-  Scratch() {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~Scratch() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-};
 
 void write_bytes(const fs::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
@@ -73,10 +62,10 @@ glint_test::ChildRun refused_in_child(const fs::path& path, const std::string& e
 
 TEST_CASE("read_pfm: a header claiming more than the file holds is refused before allocating",
           "[image][hostile]") {
-  const Scratch scratch;
+  const glint_test::ScratchDirectory scratch("image-reader");
   // 34 bytes claiming 32768x32768 (beyond glint's limits), and a header claiming 8192x8192
   // (within them) followed by one row.
-  const fs::path huge = scratch.path / "huge.pfm", short_file = scratch.path / "short.pfm";
+  const fs::path huge = scratch.path() / "huge.pfm", short_file = scratch.path() / "short.pfm";
   write_bytes(huge, "PF\n32768 32768\n-1.0\n" + std::string(13, '\0'));
   write_bytes(short_file, "PF\n8192 8192\n-1.0\n" + std::string(8192 * 12, '\0'));
   CHECK(pfm_refusal(huge) == huge.string() +
@@ -96,10 +85,10 @@ TEST_CASE("read_pfm: a header claiming more than the file holds is refused befor
 
 TEST_CASE("read_pfm: a PNG, binary data and endless devices are refused from their first bytes",
           "[image][hostile]") {
-  const Scratch scratch;
+  const glint_test::ScratchDirectory scratch("image-reader");
   // A PNG's signature and an IHDR chunk claiming 32768x32768 RGB: glint reads no PNG, and
   // its bytes are no PFM header.
-  const fs::path png = scratch.path / "huge.png";
+  const fs::path png = scratch.path() / "huge.png";
   write_bytes(png,
               std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\0\x80\0\0\0\x80\0\x08\x02\0\0\0", 29) +
                   std::string(4, '\0'));
@@ -114,18 +103,18 @@ TEST_CASE("read_pfm: a PNG, binary data and endless devices are refused from the
     CHECK(run.peak_kb < kBoundKb);
   }
   // A header of words too long for one: refused within kMaxPfmHeader bytes.
-  const fs::path spaces = scratch.path / "spaces.pfm";
+  const fs::path spaces = scratch.path() / "spaces.pfm";
   write_bytes(spaces, "PF" + std::string(1 << 20, ' ') + "1 1 -1\n");
   CHECK(pfm_refusal(spaces).find("not a colour PFM file") != std::string::npos);
-  CHECK(pfm_refusal(scratch.path) ==
-        "cannot read " + scratch.path.string() + ": it is a directory");
-  CHECK(pfm_refusal(scratch.path / "missing.pfm") ==
-        "cannot read " + (scratch.path / "missing.pfm").string() + ": No such file or directory");
+  CHECK(pfm_refusal(scratch.path()) ==
+        "cannot read " + scratch.path().string() + ": it is a directory");
+  CHECK(pfm_refusal(scratch.path() / "missing.pfm") ==
+        "cannot read " + (scratch.path() / "missing.pfm").string() + ": No such file or directory");
 }
 
 TEST_CASE("read_pfm: a pipe is read as far as its data arrives", "[image][hostile]") {
-  const Scratch scratch;
-  const fs::path fifo = scratch.path / "fifo.pfm";
+  const glint_test::ScratchDirectory scratch("image-reader");
+  const fs::path fifo = scratch.path() / "fifo.pfm";
   // A reader that refuses early closes the pipe under its writer: EPIPE, not the signal.
   std::signal(SIGPIPE, SIG_IGN);
   REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);

@@ -19,6 +19,7 @@
 
 #include <stb_image_write.h>
 
+#include "../support/scratch_directory.hpp"
 #include "glint/error.hpp"
 #include "glint/image/texture.hpp"
 #include "glint/io/image_writer.hpp"
@@ -38,19 +39,6 @@ namespace fs = std::filesystem;
 using glint::Color;
 using glint::Vec2;
 using glint::Vec3;
-
-struct Scratch {
-  fs::path path = fs::temp_directory_path() / ("glint-texture-" + std::to_string(::getpid()));
-  Scratch() {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~Scratch() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-  fs::path operator/(const std::string& name) const { return path / name; }
-};
 
 void write_text(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
@@ -242,7 +230,7 @@ TEST_CASE("sRGB values decode to the linear values of the standard's formula", "
 
 TEST_CASE("read_texture decodes PNG, JPEG, Radiance HDR and PFM files to linear texels",
           "[texture][unit]") {
-  const Scratch dir;
+  const glint_test::ScratchDirectory dir("texture");
   SECTION("an 8-bit PNG, row by row from the top, alpha ignored") {
     const std::vector<unsigned char> rgba = {10,  20,  30,  255, 128, 0,  255, 7,  //
                                              255, 255, 255, 0,   0,   64, 200, 99};
@@ -299,11 +287,11 @@ TEST_CASE("read_texture decodes PNG, JPEG, Radiance HDR and PFM files to linear 
 
 TEST_CASE("read_texture refuses what is no image it reads, naming the file and the problem",
           "[texture][unit]") {
-  const Scratch dir;
+  const glint_test::ScratchDirectory dir("texture");
   CHECK_THAT(refusal(dir / "missing.png"), Catch::Contains("cannot read") &&
                                                Catch::Contains("missing.png") &&
                                                Catch::Contains("No such file"));
-  CHECK_THAT(refusal(dir.path), Catch::Contains("it is a directory"));
+  CHECK_THAT(refusal(dir.path()), Catch::Contains("it is a directory"));
   write_text(dir / "scene.png", "sphere center=0,0,0 radius=1\n");
   CHECK_THAT(refusal(dir / "scene.png"),
              Catch::Contains("scene.png: not a PNG, JPEG, Radiance HDR or PFM file"));
@@ -349,7 +337,7 @@ std::string scene_error(const fs::path& scene) {
 
 TEST_CASE("texture=FILE reads the image from the scene file's directory, once for all spheres",
           "[texture][unit]") {
-  const Scratch dir;
+  const glint_test::ScratchDirectory dir("texture");
   fs::create_directories(dir / "maps");
   write_png_bytes(dir / "maps" / "ball.png", 2, 1, {255, 0, 0, 0, 0, 255});
   write_text(dir / "scene.txt",
@@ -391,7 +379,7 @@ TEST_CASE("texture=FILE reads the image from the scene file's directory, once fo
 }
 
 TEST_CASE("the texture keys' mistakes are errors naming the line", "[texture][unit]") {
-  const Scratch dir;
+  const glint_test::ScratchDirectory dir("texture");
   write_png_bytes(dir / "ok.png", 1, 1, {1, 2, 3});
   const auto error_of = [&](const std::string& sphere) {
     write_text(dir / "s.txt", "image width=4 height=4\n" + sphere + "\n");
