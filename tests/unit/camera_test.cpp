@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <utility>
@@ -194,15 +195,16 @@ TEST_CASE("validate rejects degenerate cameras", "[camera][validate]") {
   CHECK_NOTHROW(glint::validate(s));
 }
 
-TEST_CASE("camera: a point seen through a film position connects back to that position",
-          "[camera]") {
-  glint::CameraDescription description = oblique_camera();
-  description.near = 0.5f;
-  const glint::Camera camera(description, 64, 48);
-  for (const Vec2 film :
-       {Vec2(0.5f, 0.5f), Vec2(31.7f, 20.2f), Vec2(63.9f, 47.1f), Vec2(-3.0f, 60.0f)}) {
+namespace {
+
+/// Points along the rays through `films`, near and far, connect back to their film positions,
+/// along the ray reversed, at its distance, blockable from the ray's start on, through the
+/// camera's position.
+void check_connections_back(const glint::Camera& camera, std::initializer_list<Vec2> films) {
+  for (const Vec2 film : films) {
     const glint::Ray ray = camera.ray_through(film);
     for (const float t : {1.0f, 7.5f, 300.0f}) {
+      INFO("film " << film.x << ", " << film.y << ", distance " << t);
       const std::optional<glint::CameraConnection> c = camera.connect(ray.at(t));
       REQUIRE(c.has_value());
       CHECK(c->film.x == Approx(film.x).margin(2e-3));
@@ -210,8 +212,20 @@ TEST_CASE("camera: a point seen through a film position connects back to that po
       CHECK(c->distance == Approx(t).epsilon(1e-5));
       CHECK(c->unclipped_distance == Approx(t - ray.t_min).epsilon(1e-5));
       CHECK(glm::dot(c->direction, ray.direction) == Approx(-1.0).margin(1e-6));
+      CHECK(c->lens_point == camera.position());
     }
   }
+}
+
+}  // namespace
+
+TEST_CASE("camera: a point seen through a film position connects back to that position",
+          "[camera]") {
+  glint::CameraDescription description = oblique_camera();
+  description.near = 0.5f;
+  const glint::Camera camera(description, 64, 48);
+  check_connections_back(
+      camera, {Vec2(0.5f, 0.5f), Vec2(31.7f, 20.2f), Vec2(63.9f, 47.1f), Vec2(-3.0f, 60.0f)});
   // Behind the camera, and between it and the near plane: not seen.
   const glint::Ray centre = camera.ray_through(Vec2(32.0f, 24.0f));
   CHECK_FALSE(camera.connect(centre.at(-2.0f)).has_value());
@@ -412,20 +426,9 @@ TEST_CASE("camera: the panorama connects a point back to its film position, in e
   glint::CameraDescription description = panorama_camera();
   description.near = 0.5f;
   const glint::Camera camera(description, 64, 32);
-  for (const Vec2 film : {Vec2(0.5f, 0.5f), Vec2(31.7f, 20.2f), Vec2(63.2f, 31.1f),
-                          Vec2(10.0f, 3.0f), Vec2(50.0f, 27.0f)}) {
-    const glint::Ray ray = camera.ray_through(film);
-    for (const float t : {1.0f, 7.5f, 300.0f}) {
-      const std::optional<glint::CameraConnection> c = camera.connect(ray.at(t));
-      REQUIRE(c.has_value());
-      CHECK(c->film.x == Approx(film.x).margin(2e-3));
-      CHECK(c->film.y == Approx(film.y).margin(2e-3));
-      CHECK(c->distance == Approx(t).epsilon(1e-5));
-      CHECK(c->unclipped_distance == Approx(t - 0.5f).epsilon(1e-5));
-      CHECK(glm::dot(c->direction, ray.direction) == Approx(-1.0).margin(1e-6));
-      CHECK(c->lens_point == description.position);
-    }
-  }
+  CHECK(camera.ray_through(Vec2(10.0f, 3.0f)).t_min == 0.5f);  // along every ray
+  check_connections_back(camera, {Vec2(0.5f, 0.5f), Vec2(31.7f, 20.2f), Vec2(63.2f, 31.1f),
+                                  Vec2(10.0f, 3.0f), Vec2(50.0f, 27.0f)});
   // Within `near`: not seen; behind the viewing direction: seen.
   const glint::Ray ahead = camera.ray_through(Vec2(32.0f, 16.0f));
   CHECK_FALSE(camera.connect(ahead.at(0.4f)).has_value());

@@ -155,9 +155,14 @@ inline Texture read_texture(const std::filesystem::path& path, std::string name)
     // The PFM reader opens the file again, which only a regular file allows.
     if (format == Format::pfm && !file.size())
       throw ImageReadError(shown + ": a PFM texture must be a regular file, not a pipe or device");
-    // A regular file's size is known, and it is read into one allocation; a pipe's is not.
-    const std::uint64_t rest = file.size() ? *file.size() - bytes.size() : kMaxTextureFileSize;
-    if (format != Format::pfm && file.append(bytes, rest) && !file.at_end()) too_large();
+    // A regular file is read as far as its size when it was opened, into one allocation; a
+    // pipe or a device as far as it goes, up to the limit.
+    if (format != Format::pfm) {
+      if (file.size())
+        file.append(bytes, *file.size() > bytes.size() ? *file.size() - bytes.size() : 0);
+      else if (file.append(bytes, kMaxTextureFileSize) && !file.at_end())
+        too_large();
+    }
   }
   if (format == Format::pfm) {
     // Its own reader, which checks the header against the limits in the same way.
