@@ -31,6 +31,16 @@ glint::CameraDescription oblique_camera() {
   return c;
 }
 
+/// The camera's viewing direction, right and up, as the camera builds them.
+struct ViewFrame {
+  Vec3 forward, right, up;
+};
+ViewFrame view_frame(const glint::CameraDescription& description) {
+  const Vec3 forward = glm::normalize(description.look_at - description.position);
+  const Vec3 right = glm::normalize(glm::cross(forward, description.up));
+  return {forward, right, glm::cross(right, forward)};
+}
+
 double angle_between(const Vec3& a, const Vec3& b) {
   const double cosine = glm::dot(glm::normalize(a), glm::normalize(b));
   return std::acos(std::clamp(cosine, -1.0, 1.0));
@@ -88,9 +98,7 @@ TEST_CASE("camera: edge and corner rays have the angles implied by fov and aspec
   const glint::CameraDescription description = oblique_camera();
   const int width = 320, height = 200;
   const glint::Camera camera(description, width, height);
-  const Vec3 forward = glm::normalize(description.look_at - description.position);
-  const Vec3 right = glm::normalize(glm::cross(forward, description.up));
-  const Vec3 up = glm::cross(right, forward);
+  const auto [forward, right, up] = view_frame(description);
   const double half_fov = 0.5 * description.fov_degrees * kDegree;
   const double aspect = double(width) / height;
 
@@ -396,9 +404,7 @@ glint::CameraDescription panorama_camera() {
 TEST_CASE("camera: the panorama's film covers every direction, middle ahead, top up", "[camera]") {
   const glint::CameraDescription description = panorama_camera();
   const glint::Camera camera(description, 64, 32);
-  const Vec3 forward = glm::normalize(description.look_at - description.position);
-  const Vec3 right = glm::normalize(glm::cross(forward, description.up));
-  const Vec3 up = glm::cross(right, forward);
+  const auto [forward, right, up] = view_frame(description);
   const auto direction = [&](float x, float y) { return camera.ray_through(Vec2(x, y)).direction; };
   // The chord between unit vectors: the angle, where acos of a float cosine near 1 cannot resolve
   // less than about 3e-4.
@@ -443,9 +449,7 @@ TEST_CASE("camera: the panorama's density integrates to the film's pixels over t
   const glint::CameraDescription description = panorama_camera();
   const int width = 40, height = 24;
   const glint::Camera camera(description, width, height);
-  const Vec3 forward = glm::normalize(description.look_at - description.position);
-  const Vec3 right = glm::normalize(glm::cross(forward, description.up));
-  const Vec3 up = glm::cross(right, forward);
+  const auto [forward, right, up] = view_frame(description);
   constexpr int kSteps = 720;
   double sum = 0.0;
   for (int i = 0; i < kSteps; ++i)
