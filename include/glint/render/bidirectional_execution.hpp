@@ -67,7 +67,7 @@ class BidirectionalExecution {
   BidirectionalExecution(const Scene& scene, const RenderSettings& settings,
                          float merge_radius_pixels = kMergeRadiusPixels)
       : camera_(scene.camera(), settings.width, settings.height),
-        splatter_(settings, camera_.is_equirectangular()),
+        splatter_(settings, camera_),
         tracer_(scene, camera_, settings.max_depth, float(settings.width) * float(settings.height),
                 splatter_.has_area()),
         settings_(settings),

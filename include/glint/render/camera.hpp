@@ -188,6 +188,27 @@ class Camera {
     return connect_through(point, lens_radius_ * sample_uniform_disc(sampler.next_2d()));
   }
 
+  /// Calls `visit` with each film point within `reach` of the film (beyond its edges by less)
+  /// that shows the direction film point `film` shows: `film` itself for a perspective camera;
+  /// for the panorama also the points a whole width round and those folded over a pole, mirrored
+  /// in the top or bottom edge half a width round, as panorama_direction unfolds them.
+  template <typename Visit>
+  void film_images(Vec2 film, float reach, Visit&& visit) const {
+    if (!equirectangular_) return visit(film);
+    const float width = 2.0f * half_width_, height = 2.0f * half_height_;
+    for (int fold = 0; fold < 2; ++fold) {
+      const float y = fold == 0 ? film.y : -film.y;
+      const float x = fold == 0 ? film.x : film.x + half_width_;
+      for (float y_image = y - 2.0f * height * std::ceil((y + reach) / (2.0f * height));
+           y_image < height + reach; y_image += 2.0f * height) {
+        if (y_image <= -reach) continue;
+        for (float x_image = x - width * std::ceil((x + reach) / width); x_image < width + reach;
+             x_image += width)
+          if (x_image > -reach) visit(Vec2(x_image, y_image));
+      }
+    }
+  }
+
  private:
   /// connect through the lens point `disc` (along right and up) from the centre.
   std::optional<CameraConnection> connect_through(const Vec3& point, Vec2 disc) const {
@@ -212,7 +233,7 @@ class Camera {
   /// The panorama's direction at film point `film`, on the film or off it (a pixel filter's
   /// offsets reach past the edges): the film is the sphere of directions, so its left and right
   /// edges meet and each of its top and bottom edges folds over a pole onto itself, half a turn
-  /// round (FilmSplatter::add does the same for light landing near an edge).
+  /// round (film_images lists the film points so unfolded).
   Vec3 panorama_direction(Vec2 film) const {
     const float width = 2.0f * half_width_, height = 2.0f * half_height_;
     float y = film.y - 2.0f * height * std::floor(film.y / (2.0f * height));  // [0, 2 height)

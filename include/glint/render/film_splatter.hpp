@@ -11,6 +11,7 @@
 #include "glint/image/splat_sums.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/math/vector.hpp"
+#include "glint/render/camera.hpp"
 #include "glint/render/estimators/path_context.hpp"
 #include "glint/render/render_settings.hpp"
 
@@ -21,10 +22,10 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 template <RenderConfig C>
 class FilmSplatter {
  public:
-  /// `panorama`: the film is an equirectangular camera's (Camera::is_equirectangular), which
-  /// wraps around: light landing near an edge also lands where the film continues past it.
-  explicit FilmSplatter(const RenderSettings& settings, bool panorama = false)
-      : panorama_(panorama),
+  /// `camera`'s film (kept by reference): where it wraps around, light landing near an edge also
+  /// lands where the film continues past it (Camera::film_images).
+  FilmSplatter(const RenderSettings& settings, const Camera& camera)
+      : camera_(camera),
         width_(settings.width),
         height_(settings.height),
         sigma_(settings.antialias_sigma),
@@ -45,23 +46,10 @@ class FilmSplatter {
       ++counters.invalid_samples;
       return;
     }
-    if (!panorama_) return add_at(splats, film, light, weight, counters);
-    // Every place the panorama's film shows the same direction near the film: shifted by whole
-    // widths, and folded over a pole (mirrored in the edge, half a width round), as
-    // Camera::panorama_direction unfolds the film points of a pixel filter.
-    const float width = float(width_), height = float(height_);
-    const float reach = footprint_ + 1.0f;
-    for (int fold = 0; fold < 2; ++fold) {
-      const float y = fold == 0 ? film.y : -film.y;
-      const float x = fold == 0 ? film.x : film.x + 0.5f * width;
-      for (float y_image = y - 2.0f * height * std::ceil((y + reach) / (2.0f * height));
-           y_image < height + reach; y_image += 2.0f * height) {
-        if (y_image <= -reach) continue;
-        for (float x_image = x - width * std::ceil((x + reach) / width); x_image < width + reach;
-             x_image += width)
-          if (x_image > -reach) add_at(splats, Vec2(x_image, y_image), light, weight, counters);
-      }
-    }
+    // Every film point that shows the same direction near the film (a panorama's film wraps
+    // around): the pixels' filters reach it there too.
+    camera_.film_images(film, footprint_ + 1.0f,
+                        [&](Vec2 image) { add_at(splats, image, light, weight, counters); });
   }
 
  private:
@@ -93,7 +81,7 @@ class FilmSplatter {
       }
   }
 
-  bool panorama_;
+  const Camera& camera_;
   int width_, height_;
   float sigma_;
   float footprint_;

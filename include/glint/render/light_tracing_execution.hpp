@@ -53,7 +53,7 @@ class LightTracingExecution {
       : camera_(scene.camera(), settings.width, settings.height),
         tracer_(scene, camera_, settings.max_depth),
         settings_(settings),
-        splatter_(settings, camera_.is_equirectangular()) {
+        splatter_(settings, camera_) {
     if (!splatter_.has_area())
       throw SettingsError(
           "glint: light tracing needs a pixel filter with an area (antialias sigma > 0 with the "
