@@ -26,13 +26,15 @@ std::uint64_t scene_text_hash(std::string_view text) {
 
 std::uint64_t scene_textures_hash(std::uint64_t hash, const glint::Scene& scene) {
   std::unordered_set<const glint::Texture*> seen;
-  for (const glint::SphereTexture& texture : scene.textures()) {
-    const glint::Texture& image = texture.image();
-    if (!seen.insert(&image).second) continue;
+  const auto add = [&](const glint::Texture& image) {
+    if (!seen.insert(&image).second) return;
     const int size[2] = {image.width(), image.height()};
     hash = glint::fnv1a(size, sizeof size, hash);
     hash = glint::fnv1a(image.texels().data(), image.texels().size() * sizeof(glint::Color), hash);
-  }
+  };
+  for (const glint::SphereTexture& texture : scene.textures())
+    add(texture.image());
+  if (scene.environment().has_image()) add(scene.environment().image().image());
   return hash;
 }
 

@@ -23,9 +23,9 @@ std::string scene_file_text(LoadProgress& loading, const std::string& file);
 /// that any edit, even one that renders the same, makes a checkpoint another scene's.
 std::uint64_t scene_text_hash(std::string_view text);
 
-/// `hash` continued over the images the scene's spheres show, each once: the part of a scene
-/// that is not in its text. A texture file edited between a checkpoint and its resume makes the
-/// checkpoint another scene's, as an edit of the scene file does.
+/// `hash` continued over the images the scene's spheres and background show, each once: the
+/// part of a scene that is not in its text. A texture file edited between a checkpoint and its
+/// resume makes the checkpoint another scene's, as an edit of the scene file does.
 std::uint64_t scene_textures_hash(std::uint64_t hash, const glint::Scene& scene);
 
 /// Parses the scene's text, read from `source`, and builds it, with its loading reported. The

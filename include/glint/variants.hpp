@@ -103,7 +103,8 @@ struct sobol_sampler : report::with_sampler<SobolSampler> {
 /// rough and metal mirrors cost a scene that has none.
 struct fast_no_emitter_sampling : fast::with_light_sampling<PointLightsOnly> {
   static constexpr VariantInfo info{
-      "fast_no_emitter_sampling", "`fast` with emissive spheres found by bounces only", kSameImage};
+      "fast_no_emitter_sampling",
+      "`fast` with emissive spheres and the background's image found by bounces only", kSameImage};
 };
 struct fast_emitters_by_power
     : fast::with_light_sampling<EmitterSampling<PowerHeuristic, EmitterChoiceByPower>> {

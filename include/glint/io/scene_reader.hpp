@@ -172,7 +172,14 @@ inline constexpr std::string_view kCameraKeys[] = {"position", "look_at",  "up",
 enum LightKey : int { kLightPosition, kIntensity, kLightColor };
 inline constexpr std::string_view kLightKeys[] = {"position", "intensity", "color"};
 inline constexpr std::string_view kAntialiasKeys[] = {"sigma"};
-inline constexpr std::string_view kBackgroundKeys[] = {"color"};
+enum BackgroundKey : int {
+  kBackgroundColor,
+  kBackgroundImage,
+  kBackgroundAxis,
+  kBackgroundTurn,
+  kBackgroundScale
+};
+inline constexpr std::string_view kBackgroundKeys[] = {"color", "image", "axis", "turn", "scale"};
 inline constexpr std::string_view kMediumKeys[] = {"ior"};
 
 static_assert(std::size(kMaterialKeys) == kMaterialKeyCount &&
@@ -510,7 +517,19 @@ class Parser {
   void read_background(std::span<const std::string_view> tokens) {
     once("background", scene_.background_line);
     const Fields f = fields("background", kBackgroundKeys, tokens);
-    if (f.has(0)) scene_.background = vec3("color", f[0]);
+    if (f.has(kBackgroundColor)) scene_.background = vec3("color", f[kBackgroundColor]);
+    if (f.has(kBackgroundAxis)) scene_.background_placement.axis = vec3("axis", f[kBackgroundAxis]);
+    if (f.has(kBackgroundTurn))
+      scene_.background_placement.turn_degrees = number("turn", f[kBackgroundTurn]);
+    if (f.has(kBackgroundScale)) scene_.background_scale = number("scale", f[kBackgroundScale]);
+    // A mistake in the keys is named before the file is read.
+    if (f.has(kBackgroundImage) && f.has(kBackgroundColor))
+      fail("a background is a color or an image, not both: give color= or image=");
+    if (!f.has(kBackgroundImage) &&
+        (f.has(kBackgroundAxis) || f.has(kBackgroundTurn) || f.has(kBackgroundScale)))
+      fail("background axis, turn and scale place an image: give it with image=FILE");
+    if (f.has(kBackgroundImage))
+      scene_.background_image = image_file("background image", f[kBackgroundImage]);
     detail::check_background(scene_);
   }
 
@@ -583,7 +602,7 @@ class Parser {
       if (const std::string problem = detail::texture_shading_problem(sphere.shading, true);
           !problem.empty())
         fail(problem);
-      sphere.texture = texture(f[kTexture]);
+      sphere.texture = image_file("texture", f[kTexture]);
     } else if (f.has(kTextureAxis) || f.has(kTextureTurn)) {
       fail("texture_axis and texture_turn place an image: give it with texture=FILE");
     }
@@ -613,9 +632,10 @@ class Parser {
     fail(detail::concat({"unknown shading ", quoted(text), " (expected ", expected, ")"}));
   }
 
-  /// The image of `texture=FILE`, read once however many spheres show it. A relative path is
-  /// taken from the directory of the scene file (of `source`).
-  std::shared_ptr<const Texture> texture(std::string_view file) {
+  /// The image of `texture=FILE` or `image=FILE` (`what` names it in an error), read once
+  /// however many statements show it. A relative path is taken from the directory of the scene
+  /// file (of `source`).
+  std::shared_ptr<const Texture> image_file(std::string_view what, std::string_view file) {
     const std::filesystem::path given{std::string(file)};
     const std::filesystem::path path =
         given.is_absolute() ? given : std::filesystem::path(scene_.source).parent_path() / given;
@@ -626,7 +646,7 @@ class Parser {
       textures_.emplace(key, image);
       return image;
     } catch (const ImageReadError& error) {
-      fail(detail::concat({"texture ", quoted(file), ": ", error.what()}));
+      fail(detail::concat({what, " ", quoted(file), ": ", error.what()}));
     }
   }
 

@@ -121,25 +121,28 @@ inline void append_material(std::string& out, const Material& m) {
   }
 }
 
-/// A sphere's image by the name it was read with (the path as its scene file gave it, relative
-/// to that file's directory) and its placement where not the default.
-inline void append_texture(std::string& out, const SphereDescription& sphere) {
-  const std::string& name = sphere.texture->name();
+/// An image by the name it was read with (the path as its scene file gave it, relative to that
+/// file's directory) as `key`=NAME, and its placement where not the default as
+/// `axis_key`= and `turn_key`=.
+inline void append_image(std::string& out, const Texture& image, const TexturePlacement& placement,
+                         const char* key, const char* axis_key, const char* turn_key) {
+  const std::string& name = image.name();
   const bool writable = !name.empty() && std::none_of(name.begin(), name.end(), [](char c) {
     return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '#' || c == '\0';
   });
   if (!writable)
     throw SceneWriteError(
-        "a texture's name must be a path without spaces, tabs, line ends or '#'"
+        "an image's name must be a path without spaces, tabs, line ends or '#'"
         " to be written in a scene file, got '" +
         name + "'");
-  out += " texture=";
+  out += ' ';
+  out += key;
+  out += '=';
   out += name;
   const TexturePlacement defaults{};
-  if (!same_bits(sphere.texture_placement.axis, defaults.axis))
-    append_key(out, "texture_axis", sphere.texture_placement.axis);
-  if (!same_bits(sphere.texture_placement.turn_degrees, defaults.turn_degrees))
-    append_key(out, "texture_turn", sphere.texture_placement.turn_degrees);
+  if (!same_bits(placement.axis, defaults.axis)) append_key(out, axis_key, placement.axis);
+  if (!same_bits(placement.turn_degrees, defaults.turn_degrees))
+    append_key(out, turn_key, placement.turn_degrees);
 }
 
 /// Formats the scene line by line into `buffer`, handing it to `sink` whenever it passes
@@ -175,7 +178,14 @@ void emit_scene(const SceneDescription& scene, std::string& buffer, std::size_t 
   buffer += "\nantialias";
   append_key(buffer, "sigma", scene.antialias_sigma);
   buffer += "\nbackground";
-  append_key(buffer, "color", scene.background);
+  if (scene.background_image) {
+    append_image(buffer, *scene.background_image, scene.background_placement, "image", "axis",
+                 "turn");
+    if (!same_bits(scene.background_scale, 1.0f))
+      append_key(buffer, "scale", scene.background_scale);
+  } else {
+    append_key(buffer, "color", scene.background);
+  }
   buffer += "\nmedium";
   append_key(buffer, "ior", scene.medium_ior);
   buffer += '\n';
@@ -196,7 +206,9 @@ void emit_scene(const SceneDescription& scene, std::string& buffer, std::size_t 
       buffer += " shading=";
       buffer += to_string(sphere.shading);
     }
-    if (sphere.texture) append_texture(buffer, sphere);
+    if (sphere.texture)
+      append_image(buffer, *sphere.texture, sphere.texture_placement, "texture", "texture_axis",
+                   "texture_turn");
     buffer += '\n';
     if (buffer.size() >= chunk) sink(buffer);
   }

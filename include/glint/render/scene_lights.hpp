@@ -39,8 +39,7 @@ using LightId = std::uint32_t;
 /// Whether light paths carry all of a scene's light: its background, which starts none, is
 /// black.
 inline bool light_paths_carry_all_light(const Scene& scene) {
-  const Color background = scene.background();
-  return background.r == 0.0f && background.g == 0.0f && background.b == 0.0f;
+  return scene.environment().is_black();
 }
 
 class SceneLights {

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/common.hpp>
+
 #include "glint/geometry/light_buffer.hpp"
 #include "glint/geometry/ray.hpp"
 #include "glint/geometry/ray_batch.hpp"
@@ -27,6 +29,7 @@
 #include "glint/geometry/wall_set.hpp"
 #include "glint/instruction_set.hpp"
 #include "glint/scene/emitters.hpp"
+#include "glint/scene/environment.hpp"
 #include "glint/scene/inclusion_tree.hpp"
 #include "glint/scene/scene_description.hpp"
 #include "glint/scene/sphere_texture.hpp"
@@ -57,6 +60,33 @@ struct SurfaceHit {
   std::uint32_t sphere;
 };
 
+/// A ball: centre and radius.
+struct BoundingSphere {
+  Vec3 center{0.0f};
+  float radius = 0.0f;
+};
+
+/// The ball about the middle of the box of a scene's spheres, point lights and camera that holds
+/// them all, its radius rounded up.
+inline BoundingSphere bounding_sphere_of(const SceneDescription& description) {
+  glm::dvec3 low(description.camera.position), high(description.camera.position);
+  const auto extend = [&](const Vec3& center, float radius) {
+    low = glm::min(low, glm::dvec3(center) - double(radius));
+    high = glm::max(high, glm::dvec3(center) + double(radius));
+  };
+  for (const SphereDescription& sphere : description.spheres)
+    extend(sphere.center, sphere.radius);
+  for (const PointLight& light : description.lights)
+    extend(light.position, 0.0f);
+  const glm::dvec3 middle = 0.5 * (low + high);
+  double radius = glm::length(glm::dvec3(description.camera.position) - middle);
+  for (const SphereDescription& sphere : description.spheres)
+    radius = std::max(radius, glm::length(glm::dvec3(sphere.center) - middle) + sphere.radius);
+  for (const PointLight& light : description.lights)
+    radius = std::max(radius, glm::length(glm::dvec3(light.position) - middle));
+  return {Vec3(middle), float(radius * (1.0 + 1e-6)) + 1e-6f};
+}
+
 class Scene {
  public:
   /// Validates the description (SceneError on any problem, with its line) and builds the
@@ -75,8 +105,13 @@ class Scene {
     scene.image_ = description.image;
     scene.camera_ = description.camera;
     scene.antialias_sigma_ = description.antialias_sigma;
-    scene.background_ = description.background;
+    scene.environment_ =
+        description.background_image
+            ? Environment(description.background_image, description.background_placement,
+                          description.background_scale)
+            : Environment(description.background);
     scene.background_line_ = description.background_line;
+    scene.bounds_ = bounding_sphere_of(description);
     scene.lights_ = description.lights;
     const InclusionTree tree = build_inclusion_tree(description);
     const float huge_radius = huge_radius_threshold(description);
@@ -162,9 +197,13 @@ class Scene {
   /// The emissive spheres, for light sampling.
   const EmitterTable& emitters() const { return emitters_; }
   const CameraDescription& camera() const { return camera_; }
-  Color background() const { return background_; }
+  /// The light of the rays that escape: the background's colour or its image.
+  const Environment& environment() const { return environment_; }
   /// The line of the scene file that set the background (0 if none did).
   int background_line() const { return background_line_; }
+  /// A sphere that holds every sphere, point light and the camera: where light from the
+  /// environment enters the scene (render/lights/environment_light.hpp).
+  const BoundingSphere& bounds() const { return bounds_; }
   /// The image settings and pixel filter width the scene asks for.
   const ImageDescription& image() const { return image_; }
   float antialias_sigma() const { return antialias_sigma_; }
@@ -492,8 +531,9 @@ class Scene {
   ImageDescription image_;
   CameraDescription camera_;
   float antialias_sigma_ = defaults::antialias_sigma;
-  Color background_{0.0f};
+  Environment environment_;
   int background_line_ = 0;
+  BoundingSphere bounds_;
   std::vector<PointLight> lights_;
   EmitterTable emitters_;
   WallSet walls_;

@@ -72,6 +72,11 @@ struct SceneDescription {
   CameraDescription camera{};
   float antialias_sigma = defaults::antialias_sigma;  ///< Gaussian pixel filter width, pixels
   Color background{0.0f};                             ///< radiance of rays that escape the scene
+  /// An image around the scene in place of the background colour (scene/environment.hpp), its
+  /// placement and the factor its texels are scaled by; null for a background of one colour.
+  std::shared_ptr<const Texture> background_image;
+  TexturePlacement background_placement{};
+  float background_scale = 1.0f;
   float medium_ior = 1.0f;  ///< refractive index outside every transparent sphere
   std::vector<PointLight> lights;
   std::vector<SphereDescription> spheres;

@@ -6,6 +6,7 @@
 // can run each one as soon as its statement is parsed: the first error reported is then the
 // first one in the file, whatever kind it is.
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -159,9 +160,32 @@ inline void check_antialias(const SceneDescription& scene) {
 }
 
 inline void check_background(const SceneDescription& scene) {
+  const auto fail = [&](const std::string& what) {
+    throw SceneError(scene.source, scene.background_line, what);
+  };
   if (!finite(scene.background) || !non_negative(scene.background))
-    throw SceneError(scene.source, scene.background_line,
-                     "background color must be finite and non-negative");
+    fail("background color must be finite and non-negative");
+  const TexturePlacement& placement = scene.background_placement;
+  if (!scene.background_image) {
+    if (placement.axis != TexturePlacement{}.axis || placement.turn_degrees != 0.0f ||
+        scene.background_scale != 1.0f)
+      fail("background axis, turn and scale place an image: give it with image=FILE");
+    return;
+  }
+  if (scene.background != Color(0.0f))
+    fail("a background is a color or an image, not both: give color= or image=");
+  if (!finite(placement.axis) || placement.axis == Vec3(0.0f))
+    fail("background axis must be a finite direction, not zero");
+  if (!std::isfinite(placement.turn_degrees)) fail("background turn must be finite");
+  const float scale = scene.background_scale;
+  if (!(scale >= 0.0f) || !std::isfinite(scale))
+    fail(concat({"background scale must be finite and non-negative, got ", format_number(scale)}));
+  float brightest = 0.0f;
+  for (const Color& texel : scene.background_image->texels())
+    brightest = std::max({brightest, texel.r, texel.g, texel.b});
+  if (!std::isfinite(brightest * scale))
+    fail(concat({"background scale ", format_number(scale), " takes the image's brightest texel (",
+                 format_number(brightest), ") beyond float's range"}));
 }
 
 inline void check_medium(const SceneDescription& scene) {

@@ -16,7 +16,8 @@
 // each vertex keeps its Bsdf's record to be evaluated when joined. Mirror and refraction vertices
 // are deltas, passed through by the subpaths; point lights are deltas of
 // position, reached only by joins; the camera is a pinhole, reached only by joins. The
-// background is light that only camera subpaths find, so its weight is one.
+// background, a colour or an image, is light that only camera subpaths find, so its weight is
+// one.
 //
 // Densities are per unit area at the vertex they produce (per unit solid angle converted by
 // |cos| / distance^2), as pbrt-v4's BDPT keeps them; a vertex produced through a delta keeps no
@@ -589,7 +590,8 @@ class BidirectionalPathTracer {
     for (;;) {
       const std::optional<SphereHit> hit = context_.closest_hit(ray, counters);
       if (!hit) {
-        if (mode == Transport::radiance) background += beta * context_.background();
+        if (mode == Transport::radiance)
+          background += beta * context_.scene().environment().radiance(ray.direction);
         return n;
       }
       const SurfaceInteraction it = context_.interaction(ray, *hit);

@@ -88,9 +88,13 @@ class ChainEstimator {
     static_assert(LightRayQueue<Queue, F>);
     pending.direct = mask_of<M>(false);
     const M hits = lanes && sphere != kNoSphere;
-    path.radiance = select(
-        lanes && !hits, path.radiance + path.throughput * splat_vector<V3>(context_.background()),
-        path.radiance);
+    const M escapes = lanes && !hits;
+    if (any(escapes))
+      path.radiance =
+          select(escapes,
+                 path.radiance +
+                     path.throughput * context_.escaped(escapes, path.ray.direction, path.from_pdf),
+                 path.radiance);
     if (!any(hits)) return hits;
 
     const BasicSurfaceInteraction<F> it = BasicSurfaceInteraction<F>::at_hit(

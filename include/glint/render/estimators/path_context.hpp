@@ -1,7 +1,8 @@
 #pragma once
 // What the camera-path estimators share: finding the next hit and setting it up for shading, the
-// rays towards the point lights there, sampling the emissive spheres and weighting the emission a
-// bounce finds (C::light_sampling), and the path termination policy. Written once over a Float
+// rays towards the point lights there, sampling the emissive spheres and the environment's image
+// and weighting the emission and the environment a bounce finds (C::light_sampling), and the path
+// termination policy. Written once over a Float
 // type (math/wide.hpp): one path at width 1, a Float's lanes of paths wider. Units (see
 // docs/library.md): a point light of intensity I (W/sr) at distance d brings radiance
 // I * colour / d^2 from its one direction, which the hit's Bsdf reflects as f |cos| of it.
@@ -25,6 +26,7 @@
 #include "glint/policy/emitter_choice.hpp"
 #include "glint/render/bsdf.hpp"
 #include "glint/render/light.hpp"
+#include "glint/render/lights/environment_light.hpp"
 #include "glint/render/lights/point_light_source.hpp"
 #include "glint/render/lights/sphere_light.hpp"
 #include "glint/render/scattering.hpp"
@@ -36,9 +38,7 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 /// black. Where it cannot, the bounce from a path's last scattering vertex would find nothing,
 /// and the estimators leave it out.
 inline bool rays_can_find_light(const Scene& scene) {
-  const Color background = scene.background();
-  return !scene.emitters().empty() || background.r != 0.0f || background.g != 0.0f ||
-         background.b != 0.0f;
+  return !scene.emitters().empty() || !scene.environment().is_black();
 }
 
 /// Per-thread tallies; plain integers, summed once at the end of a render.
@@ -76,14 +76,45 @@ class PathContext {
  public:
   PathContext(const Scene& scene, int max_depth)
       : scene_(scene),
-        background_(scene.background()),
         max_depth_(max_depth),
         has_emitters_(!scene.emitters().empty()),
-        last_bounce_finds_light_(rays_can_find_light(scene)) {}
+        samples_environment_(kSamplesEmitters && scene.environment().has_image() &&
+                             !scene.environment().is_black()),
+        last_bounce_finds_light_(rays_can_find_light(scene)) {
+    // A light sample goes to the environment or to an emitter, half the time each where the
+    // scene has both: a fixed share, the same at every point, so that the weight of the light a
+    // bounce finds needs no more than the bounce's direction.
+    environment_share_ = samples_environment_ ? (has_emitters_ ? 0.5f : 1.0f) : 0.0f;
+    emitter_share_ = samples_environment_ ? 1.0f - environment_share_ : 1.0f;
+  }
 
   const Scene& scene() const { return scene_; }
-  const Color& background() const { return background_; }
   int max_depth() const { return max_depth_; }
+  /// Whether light samples go to the environment's image as well as to the emitters.
+  bool samples_environment() const { return samples_environment_; }
+
+  /// The light of the environment for the lanes of `lanes`, whose rays escape in `direction`,
+  /// each chosen by a bounce with density `from_pdf` (zero for a camera ray or a delta lobe),
+  /// with its MIS weight: one unless light sampling could have chosen the same direction.
+  template <typename F>
+  Vec3For<F> escaped(MaskFor<F> lanes, const Vec3For<F>& direction, F from_pdf) const {
+    const Environment& environment = scene_.environment();
+    Vec3For<F> radiance = environment.radiance<F>(lanes, direction);
+    if constexpr (kSamplesEmitters) {
+      if (!samples_environment_) return radiance;
+      const MaskFor<F> weighed = lanes && from_pdf > 0.0f;
+      if (!any(weighed)) return radiance;
+      F weight = splat<F>(1.0f);
+      for (int i = 0; i < kLanesOf<F>; ++i)
+        if (lane(weighed, i))
+          set_lane(
+              weight, i,
+              C::light_sampling::bounce_weight(
+                  lane(from_pdf, i), environment_share_ * environment.pdf(lane(direction, i))));
+      radiance = radiance * weight;
+    }
+    return radiance;
+  }
 
   /// The lanes whose hit at `depth` scatters light (gathers it and may bounce): at most
   /// max_depth + 1 scattering vertices. A hit beyond only collects emission.
@@ -165,38 +196,64 @@ class PathContext {
     }
   }
 
-  /// Light sampling at the hits of `lanes`: one emitter per lane, chosen by the light sampling
-  /// policy's emitter choice (on both sides of the surface where a lobe with a density
-  /// transmits), and a direction towards it, scattered by `bsdf` and weighted against the
-  /// estimator's own bounce, whose density for a direction is `bounce_pdf(direction)`. One
-  /// next_1d and one next_2d per lane whenever the scene has emitters, none otherwise (so a
-  /// scene without emitters renders exactly as without light sampling). The rays that can
-  /// bring light go to `queue.emitter_rays`.
+  /// Light sampling at the hits of `lanes`: per lane, the environment's image (by its share)
+  /// or one emitter, chosen by the light sampling policy's emitter choice (on both sides of the
+  /// surface where a lobe with a density transmits), and a direction towards it, scattered by
+  /// `bsdf` and weighted against the estimator's own bounce, whose density for a direction is
+  /// `bounce_pdf(direction)`. One next_1d and one next_2d per lane whenever the scene has
+  /// emitters or an environment image, none otherwise (so such a scene renders exactly as
+  /// without light sampling). The rays that can bring light go to `queue.emitter_rays`, those
+  /// towards the environment with kNoSphere: its light arrives where they meet nothing.
   template <typename F, typename B, typename BouncePdf, typename Draws, typename Queue>
   void emitter_rays(MaskFor<F> lanes, const BasicSurfaceInteraction<F>& it, const B& bsdf,
                     BouncePdf&& bounce_pdf, Draws& draws, Queue& queue,
                     TraceCounters& counters) const {
     using V3 = Vec3For<F>;
     using M = MaskFor<F>;
-    if (!has_emitters_) return;
+    if (!has_emitters_ && !samples_environment_) return;
     const F u_choice = next_1d(draws, lanes);
     const Vec2For<F> u = next_2d(draws, lanes);
     // A two-sided point sees its own sphere's light from inside, through the lobe that
     // transmits, whichever side it was reached from.
     const M two_sided = bsdf.transmits_with_density();
     const M from_inside = it.at.from_inside || two_sided;
-    const EmitterLanes<F> chosen = EmitterChoiceOf<>::choose(
-        scene_.emitters(),
-        EmitterChoicePoint<F>{it.point, it.at.facing_normal, it.sphere, from_inside, two_sided},
-        u_choice);
-    const BasicSphereLight<F> light(chosen.center, chosen.radius, chosen.radiance, chosen.sphere);
-    const BasicLightSample<F> sample =
-        light.sample_li({it.point, it.sphere, from_inside}, u, lanes);
+    // The environment's share of u_choice, and the rest stretched back to [0, 1) for the
+    // emitter choice (exactly, for a share of one half).
+    M to_environment = mask_of<M>(false);
+    F u_emitter = u_choice;
+    if (samples_environment_) {
+      const M below = u_choice < environment_share_;
+      to_environment = lanes && below;
+      if (has_emitters_)
+        u_emitter = select(below, u_choice / environment_share_,
+                           (u_choice - environment_share_) / emitter_share_);
+    }
+    const M to_emitters = lanes && !to_environment;
+    BasicLightSample<F> sample{};
+    F light_pdf = splat<F>(0.0f);
+    M valid = mask_of<M>(false);
+    if (any(to_emitters)) {
+      const EmitterLanes<F> chosen = EmitterChoiceOf<>::choose(
+          scene_.emitters(),
+          EmitterChoicePoint<F>{it.point, it.at.facing_normal, it.sphere, from_inside, two_sided},
+          u_emitter);
+      const BasicSphereLight<F> light(chosen.center, chosen.radius, chosen.radiance, chosen.sphere);
+      sample = light.sample_li({it.point, it.sphere, from_inside}, u, to_emitters);
+      light_pdf = chosen.probability * emitter_share_ * sample.pdf;
+      valid = to_emitters && chosen.probability > 0.0f && sample.valid && sample.pdf > 0.0f;
+    }
+    if (any(to_environment)) {
+      const BasicLightSample<F> far = EnvironmentLight(scene_).sample_li(
+          BasicLightPoint<F>{it.point, it.sphere, from_inside}, u, to_environment);
+      sample.direction = select(to_environment, far.direction, sample.direction);
+      sample.radiance = select(to_environment, far.radiance, sample.radiance);
+      sample.sphere = select(to_environment, far.sphere, sample.sphere);
+      light_pdf = select(to_environment, environment_share_ * far.pdf, light_pdf);
+      valid = valid || (to_environment && far.valid);
+    }
     const V3 reflected = bsdf.template evaluate<Transport::radiance>(sample.direction);
-    const M arrives = lanes && chosen.probability > 0.0f && sample.valid && sample.pdf > 0.0f &&
-                      (reflected.x != 0.0f || reflected.y != 0.0f || reflected.z != 0.0f);
+    const M arrives = valid && (reflected.x != 0.0f || reflected.y != 0.0f || reflected.z != 0.0f);
     if (!any(arrives)) return;
-    const F light_pdf = chosen.probability * sample.pdf;
     const F weight = C::light_sampling::light_weight(light_pdf, bounce_pdf(sample.direction));
     counters.rays += count(arrives);
     queue.emitter_rays(arrives, continue_rays(it, sample.direction), sample.sphere,
@@ -249,15 +306,19 @@ class PathContext {
     // The ray started on its origin sphere; if that is the emitter it hit, it left it inwards
     // (a ray leaving a sphere outwards cannot meet it again), so the point saw it from inside.
     const float light_pdf = EmitterChoiceOf<>::probability(scene_.emitters(), at, index) *
+                            emitter_share_ *
                             emitter.pdf_li({origin, origin_sphere, true}, direction, t, normal);
     return C::light_sampling::bounce_weight(from_pdf, light_pdf);
   }
 
   const Scene& scene_;
-  Color background_;
   int max_depth_;
   bool has_emitters_;
+  bool samples_environment_;
   bool last_bounce_finds_light_;
+  /// The probabilities that a light sample goes to the environment and to an emitter.
+  float environment_share_ = 0.0f;
+  float emitter_share_ = 1.0f;
 };
 
 /// A LightRayQueue that traces each ray at once, for one path (width 1): the reflected light
@@ -275,8 +336,9 @@ class TracedLight {
     if (!sampled) return;
     const std::optional<SphereHit> hit = scene_.closest_hit(ray);
     // A shadow ray with the emitter's distance as its end would have to beat the rounding of
-    // that distance: the light arrives where the first sphere along the ray is the emitter.
-    emitter_visible_ = hit && hit->sphere == emitter_sphere;
+    // that distance: the light arrives where the first sphere along the ray is the emitter (or,
+    // for the environment, kNoSphere: where the ray meets none).
+    emitter_visible_ = (hit ? hit->sphere : kNoSphere) == emitter_sphere;
     emitter_light_ = light;
   }
 

@@ -42,7 +42,7 @@ class TreeEstimator {
   Color trace(const Ray& ray, int depth, float throughput, float from_pdf, SamplerType& sampler,
               TraceCounters& counters) const {
     const std::optional<SphereHit> hit = context_.closest_hit(ray, counters);
-    if (!hit) return context_.background();
+    if (!hit) return context_.template escaped<float>(true, ray.direction, from_pdf);
     const SurfaceInteraction interaction = context_.interaction(ray, *hit);
     Color radiance = context_.weighted_emission(true, ray, hit->t, interaction, from_pdf);
     // Beyond the last scattering vertex a hit only collects what it found.
