@@ -12,6 +12,12 @@
 #include "load_progress.hpp"
 #include "out_of_memory.hpp"
 
+// GLINT_HAVE_EXR: the program links glint::exr (apps/CMakeLists.txt, when OpenEXR is found), and
+// so reads OpenEXR textures and background images.
+#ifdef GLINT_HAVE_EXR
+#include "glint/exr/exr_image.hpp"
+#endif
+
 namespace glint::inline GLINT_ISA_NAMESPACE::cli {
 
 std::string scene_file_text(LoadProgress& loading, const std::string& file) {
@@ -39,6 +45,9 @@ std::uint64_t scene_textures_hash(std::uint64_t hash, const glint::Scene& scene)
 }
 
 glint::Scene parse_and_build(LoadProgress& loading, std::string text, const std::string& source) {
+#ifdef GLINT_HAVE_EXR
+  glint::enable_exr_textures();
+#endif
   const glint::SceneDescription description = with_memory_for(
       [&] { return "parsing the scene " + source + " (" + byte_size(double(text.size())) + ")"; },
       [&] { return glint::read_scene_text(text, source, loading.reader_callback()); });

@@ -25,6 +25,8 @@
 #include "exr_test_support.hpp"
 #include "glint/error.hpp"
 #include "glint/exr/exr_image.hpp"
+#include "glint/io/scene_reader.hpp"
+#include "glint/io/texture_reader.hpp"
 
 using namespace glint;
 using exr_test::same_bits;
@@ -373,4 +375,31 @@ TEST_CASE("EXR read: devices that never end are refused from their first bytes",
     CHECK(run.status == 0);
     CHECK(run.peak_kb < 64 * 1024);
   }
+}
+
+TEST_CASE("EXR textures: read_texture and a scene's background read EXR files once enabled",
+          "[exr]") {
+  const exr_test::ScratchDirectory scratch("texture");
+  Film film(3, 2);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x)
+      film.at(x, y) = Color(float(x) + 0.25f, float(y) * 40.0f, 1e-3f * float(x + y));
+  write_exr(film, scratch.path() / "sky.exr");
+  enable_exr_textures();
+  const Texture texture = read_texture(scratch.path() / "sky.exr", "sky.exr");
+  CHECK(texture.width() == 3);
+  CHECK(texture.height() == 2);
+  CHECK(texture.texels() == film.pixels());
+
+  std::ofstream(scratch.path() / "scene.txt")
+      << "background image=sky.exr scale=2\nsphere center=0,0,0 radius=1\n";
+  const SceneDescription scene = read_scene_file(scratch.path() / "scene.txt");
+  REQUIRE(scene.background_image);
+  CHECK(scene.background_image->texels() == film.pixels());
+
+  // A texel that is no radiance is refused, naming the file and the texel.
+  film.at(1, 1) = Color(-1.0f, 0.0f, 0.0f);
+  write_exr(film, scratch.path() / "negative.exr");
+  CHECK_THROWS_WITH(read_texture(scratch.path() / "negative.exr", "negative.exr"),
+                    Catch::Contains("negative.exr: texel (1, 1) is not a finite, non-negative"));
 }

@@ -463,7 +463,7 @@ TEST_CASE("the background keys' mistakes are errors naming the line", "[environm
              Catch::Contains(":2: error: background scale 10 takes the image's brightest texel"));
   CHECK_THAT(error_of("background image=s.txt"),
              Catch::Contains(":2: error: background image 's.txt':") &&
-                 Catch::Contains("not a PNG, JPEG, Radiance HDR or PFM file"));
+                 Catch::Contains("not a PNG, JPEG, Radiance HDR, PFM or OpenEXR file"));
   // The library's own descriptions are held to the same rules.
   glint::SceneDescription both;
   both.background = Color(1.0f);

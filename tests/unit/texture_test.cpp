@@ -294,8 +294,13 @@ TEST_CASE("read_texture refuses what is no image it reads, naming the file and t
   CHECK_THAT(refusal(dir.path()), Catch::Contains("it is a directory"));
   write_text(dir / "scene.png", "sphere center=0,0,0 radius=1\n");
   CHECK_THAT(refusal(dir / "scene.png"),
-             Catch::Contains("scene.png: not a PNG, JPEG, Radiance HDR or PFM file"));
+             Catch::Contains("scene.png: not a PNG, JPEG, Radiance HDR, PFM or OpenEXR file"));
   CHECK_THAT(refusal("/dev/zero"), Catch::Contains("not a PNG"));
+  // An OpenEXR file, in a program that has not enabled glint's EXR library (this one).
+  write_text(dir / "sky.exr", std::string("\x76\x2f\x31\x01\x02\x00\x00\x00", 8) + "more");
+  CHECK_THAT(refusal(dir / "sky.exr"),
+             Catch::Contains("sky.exr: an OpenEXR file, which this program does not read") &&
+                 Catch::Contains("convert it to PFM or Radiance HDR"));
   write_text(dir / "empty.png", "");
   CHECK_THAT(refusal(dir / "empty.png"), Catch::Contains("not a PNG"));
 
@@ -399,7 +404,7 @@ TEST_CASE("the texture keys' mistakes are errors naming the line", "[texture][un
              Catch::Contains(":2: error: texture_axis must be a finite direction, not zero"));
   CHECK_THAT(error_of("sphere center=0,0,0 radius=1 texture=s.txt"),
              Catch::Contains(":2: error: texture 's.txt':") &&
-                 Catch::Contains("not a PNG, JPEG, Radiance HDR or PFM file"));
+                 Catch::Contains("not a PNG, JPEG, Radiance HDR, PFM or OpenEXR file"));
   // shading=texture with its image is the same as the image alone.
   write_text(dir / "both.txt", "sphere center=0,0,0 radius=1 shading=texture texture=ok.png\n");
   CHECK(glint::read_scene_file(dir / "both.txt").spheres[0].shading == glint::ShadingKind::texture);

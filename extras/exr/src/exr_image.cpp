@@ -30,6 +30,7 @@
 #include "glint/error.hpp"
 #include "glint/io/image_writer.hpp"
 #include "glint/io/input_file.hpp"
+#include "glint/io/texture_reader.hpp"
 #include "glint/scene/image_settings.hpp"
 
 namespace glint {
@@ -461,6 +462,20 @@ ExrImage read_exr(const std::filesystem::path& path) {
     file.fail("it holds more than glint reads (" + limit + "): is it an endless stream?");
   }
   return decode_exr(bytes.data(), bytes.size(), name);
+}
+
+void enable_exr_textures() {
+  exr_texture_reader() = [](const std::filesystem::path& path) {
+    const ExrImage image = read_exr(path);
+    DecodedTexels decoded{image.film.width(), image.film.height(), {}};
+    decoded.rgb.reserve(image.film.pixels().size() * 3);
+    for (const Color& c : image.film.pixels()) {
+      decoded.rgb.push_back(c.r);
+      decoded.rgb.push_back(c.g);
+      decoded.rgb.push_back(c.b);
+    }
+    return decoded;
+  };
 }
 
 }  // namespace glint

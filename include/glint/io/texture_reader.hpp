@@ -1,9 +1,11 @@
 #pragma once
 // Reading an image file as a Texture of linear RGB: PNG (8 or 16 bits) and JPEG, taken as
 // sRGB-encoded, and Radiance HDR and colour PFM, taken as linear; decoded by stb_image but for
-// the PFM. Which it is, the file's first bytes say, not its name. The file is read through
-// InputFile with a bound, and the image's size is checked against glint's limits before it is
-// decoded.
+// the PFM. OpenEXR, linear too, is read where the program links glint's EXR library and has
+// called glint::enable_exr_textures() (<glint/exr/exr_image.hpp>): the header-only core does not
+// depend on OpenEXR. Which it is, the file's first bytes say, not its name. The file is read
+// through InputFile with a bound, and the image's size is checked against glint's limits before
+// it is decoded.
 
 #include <array>
 #include <climits>
@@ -24,6 +26,27 @@
 #include "glint/io/input_file.hpp"
 #include "glint/math/elementary_functions.hpp"
 #include "glint/scene/image_settings.hpp"
+
+namespace glint {
+
+/// An image decoded outside glint's headers: linear RGB values, three per texel, row by row from
+/// the top.
+struct DecodedTexels {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgb;
+};
+
+/// How read_texture reads an OpenEXR file: null unless the program linked glint's EXR library
+/// and called glint::enable_exr_textures(). One for the whole program (it lies outside the
+/// instruction sets' namespaces); the reader throws ImageReadError naming the file.
+using ExrTextureReader = DecodedTexels (*)(const std::filesystem::path&);
+inline ExrTextureReader& exr_texture_reader() {
+  static ExrTextureReader reader = nullptr;
+  return reader;
+}
+
+}  // namespace glint
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
@@ -46,12 +69,13 @@ struct StbFree {
 };
 
 /// The formats read_texture takes, known by their first bytes.
-enum class Format { png, jpeg, radiance_hdr, pfm, unknown };
+enum class Format { png, jpeg, radiance_hdr, pfm, openexr, unknown };
 inline Format format_of(std::string_view head) {
   if (head.starts_with("\x89PNG\r\n\x1a\n")) return Format::png;
   if (head.starts_with("\xff\xd8\xff")) return Format::jpeg;
   if (head.starts_with("#?RADIANCE") || head.starts_with("#?RGBE")) return Format::radiance_hdr;
   if (head.starts_with("PF") || head.starts_with("Pf")) return Format::pfm;
+  if (head.starts_with("\x76\x2f\x31\x01")) return Format::openexr;
   return Format::unknown;
 }
 inline constexpr std::size_t kLongestMagic = 10;
@@ -151,13 +175,18 @@ inline Texture read_texture(const std::filesystem::path& path, std::string name)
     bytes.resize(file.read(bytes.data(), bytes.size()));
     format = format_of(std::string_view(bytes.data(), bytes.size()));
     if (format == Format::unknown)
-      throw ImageReadError(shown + ": not a PNG, JPEG, Radiance HDR or PFM file");
+      throw ImageReadError(shown + ": not a PNG, JPEG, Radiance HDR, PFM or OpenEXR file");
+    if (format == Format::openexr && !exr_texture_reader())
+      throw ImageReadError(shown +
+                           ": an OpenEXR file, which this program does not read (it is not built "
+                           "with OpenEXR): convert it to PFM or Radiance HDR");
     // The PFM reader opens the file again, which only a regular file allows.
     if (format == Format::pfm && !file.size())
       throw ImageReadError(shown + ": a PFM texture must be a regular file, not a pipe or device");
     // A regular file is read as far as its size when it was opened, into one allocation; a
-    // pipe or a device as far as it goes, up to the limit.
-    if (format != Format::pfm) {
+    // pipe or a device as far as it goes, up to the limit. The PFM and OpenEXR readers read the
+    // file themselves.
+    if (format != Format::pfm && format != Format::openexr) {
       if (file.size())
         file.append(bytes, *file.size() > bytes.size() ? *file.size() - bytes.size() : 0);
       else if (file.append(bytes, kMaxTextureFileSize) && !file.at_end())
@@ -168,6 +197,13 @@ inline Texture read_texture(const std::filesystem::path& path, std::string name)
     // Its own reader, which checks the header against the limits in the same way.
     const Film film = read_pfm(path);
     return Texture(std::move(name), film.width(), film.height(), film.pixels());
+  }
+  if (format == Format::openexr) {
+    const DecodedTexels decoded = exr_texture_reader()(path);
+    std::vector<Color> texels(decoded.rgb.size() / 3);
+    for (std::size_t i = 0; i < texels.size(); ++i)
+      texels[i] = Color(decoded.rgb[3 * i], decoded.rgb[3 * i + 1], decoded.rgb[3 * i + 2]);
+    return Texture(std::move(name), decoded.width, decoded.height, std::move(texels));
   }
   return decode_texture(std::string_view(bytes.data(), bytes.size()), std::move(name), shown);
 }

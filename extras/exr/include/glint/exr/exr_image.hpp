@@ -109,4 +109,9 @@ inline constexpr std::uint64_t kMaxExrFileSize = std::uint64_t{2} << 30;
 /// than kMaxExrFileSize before it is read, and a pipe or device after kMaxExrFileSize bytes.
 ExrImage read_exr(const std::filesystem::path& path);
 
+/// Lets read_texture (<glint/io/texture_reader.hpp>), and so a scene's `texture=` and
+/// `background image=`, read OpenEXR files with read_exr: their R, G and B channels as linear
+/// values. For the whole program, once before scenes are read.
+void enable_exr_textures();
+
 }  // namespace glint
