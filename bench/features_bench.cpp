@@ -37,6 +37,7 @@
 #include "glint/render/materials/microfacet_material.hpp"
 #include "glint/render/merge_grid.hpp"
 #include "glint/scene/emitters.hpp"
+#include "glint/scene/environment.hpp"
 #include "glint/scene/inclusion_tree.hpp"
 #include "glint/scene/metals.hpp"
 #include "glint/scene/scene.hpp"
@@ -305,6 +306,40 @@ void BM_EmitterChoice(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_EmitterChoice)->ArgName("emitters")->Arg(1)->Arg(64)->Arg(4096);
+
+/// The background: kind 0 the radiance of a constant colour; for a 512x256 image of random
+/// texels, kind 1 the radiance in a direction (the map's atan2 twice and a bilinear lookup),
+/// kind 2 a direction drawn in proportion to its light (two binary searches and the map back),
+/// kind 3 the density of a direction (a bounce's MIS weight needs it).
+void BM_Background(benchmark::State& state) {
+  glint::Pcg32 rng(9, 9);
+  std::vector<glint::Color> texels(512 * 256);
+  for (glint::Color& texel : texels)
+    texel = glint::Color(uniform(rng, 0, 4), uniform(rng, 0, 4), uniform(rng, 0, 4));
+  const glint::Environment constant(glint::Color(0.3f, 0.4f, 0.5f));
+  const glint::Environment image(
+      std::make_shared<const glint::Texture>("bench", 512, 256, std::move(texels)),
+      glint::TexturePlacement{}, 1.0f);
+  std::vector<Vec3> directions(kInputs);
+  for (Vec3& d : directions)
+    d = random_unit_vector(rng);
+  const std::vector<Vec2> u = random_unit_squares();
+  const int kind = int(state.range(0));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    if (kind == 0)
+      benchmark::DoNotOptimize(constant.radiance(directions[i & kMask]));
+    else if (kind == 1)
+      benchmark::DoNotOptimize(image.radiance(directions[i & kMask]));
+    else if (kind == 2)
+      benchmark::DoNotOptimize(image.sample(u[i & kMask]));
+    else
+      benchmark::DoNotOptimize(image.pdf(directions[i & kMask]));
+    ++i;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_Background)->ArgName("kind")->DenseRange(0, 3);
 
 template <glint::MisHeuristic H>
 void BM_MisWeight(benchmark::State& state) {

@@ -257,6 +257,10 @@ TEST_CASE("the environment's density integrates to one and is positive wherever 
     const Vec3 d = random_direction(rng);
     const Color l = environment.radiance(d);
     if (l.r > 0.0f || l.g > 0.0f || l.b > 0.0f) REQUIRE(environment.pdf(d) > 0.0f);
+    // find() is both at once.
+    const glint::Environment::Found found = environment.find(d);
+    REQUIRE(found.radiance == l);
+    REQUIRE(found.pdf == environment.pdf(d));
   }
 }
 

@@ -30,9 +30,16 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 
 class Environment {
  public:
-  /// A direction drawn by sample(): unit `direction` with density `pdf` per unit solid angle.
+  /// A direction drawn by sample(): unit `direction`, at `uv` on the image, with density `pdf`
+  /// per unit solid angle.
   struct DirectionSample {
     Vec3 direction;
+    Vec2 uv;
+    float pdf;
+  };
+  /// What a direction finds: the radiance from it and the density with which sample() gives it.
+  struct Found {
+    Color radiance;
     float pdf;
   };
 
@@ -69,18 +76,19 @@ class Environment {
         {-glm::dot(d, frame.east()), glm::dot(d, frame.north()), glm::dot(d, frame.front())});
   }
   /// The unit direction at (u, v): the inverse of uv().
-  Vec3 direction(const Vec2& uv) const {
-    const SphereTexture& frame = *image_;
-    const Vec3 local = equirectangular_direction(uv);
-    return glm::normalize(-local.x * frame.east() + local.y * frame.north() +
-                          local.z * frame.front());
-  }
+  Vec3 direction(const Vec2& uv) const { return to_world(equirectangular_direction(uv)); }
 
   /// The radiance arriving from unit direction `d`.
   Color radiance(const Vec3& d) const {
     if (!image_) return color_;
+    return radiance_at(uv(d));
+  }
+  /// The radiance at (u, v) of an image (requires has_image()).
+  Color radiance_at(const Vec2& uv) const { return scale_ * image_->image().filtered(uv.x, uv.y); }
+  /// radiance(d) and pdf(d) of an image (requires has_image()), the map computed once.
+  Found find(const Vec3& d) const {
     const Vec2 at = uv(d);
-    return scale_ * image_->image().filtered(at.x, at.y);
+    return {radiance_at(at), pdf_at(d, at)};
   }
   /// The radiance from each of a Float's lanes of unit directions, for the lanes of `lanes`
   /// (zero elsewhere where there is an image): lane by lane, the same bits as radiance(d).
@@ -104,20 +112,14 @@ class Environment {
   /// pdf(direction) but where rounding moves the direction across a texel's edge.
   DirectionSample sample(const Vec2& u) const {
     const PiecewiseConstant2D::Sample drawn = distribution_.sample(u);
-    float sine = 0.0f, cosine = 0.0f;
-    sincos(kPi * drawn.uv.y, sine, cosine);
-    return {direction(drawn.uv), sine > 0.0f ? drawn.pdf / (kTwoPiSquared * sine) : 0.0f};
+    const Vec3 local = equirectangular_direction(drawn.uv);
+    const float sine = std::sqrt(local.x * local.x + local.z * local.z);
+    return {to_world(local), drawn.uv,
+            sine > 0.0f ? drawn.pdf / (kTwoPiSquared * std::min(sine, 1.0f)) : 0.0f};
   }
   /// The density per unit solid angle with which sample() gives unit direction `d`, zero at the
   /// poles.
-  float pdf(const Vec3& d) const {
-    const SphereTexture& frame = *image_;
-    const float east = glm::dot(d, frame.east()), front = glm::dot(d, frame.front());
-    // sin(theta) from the components across the pole, which keep their precision near it.
-    const float sine = std::sqrt(east * east + front * front);
-    if (!(sine > 0.0f)) return 0.0f;
-    return distribution_.pdf(uv(d)) / (kTwoPiSquared * std::min(sine, 1.0f));
-  }
+  float pdf(const Vec3& d) const { return pdf_at(d, uv(d)); }
 
   /// The mean radiance over all directions (of the channels' mean), in double.
   double mean_radiance() const {
@@ -158,6 +160,22 @@ class Environment {
   }
 
   static constexpr float kTwoPiSquared = 2.0f * kPi * kPi;
+
+  /// A direction of the image's frame (equirectangular_uv's axes, u mirrored) in the scene's.
+  Vec3 to_world(const Vec3& local) const {
+    const SphereTexture& frame = *image_;
+    return glm::normalize(-local.x * frame.east() + local.y * frame.north() +
+                          local.z * frame.front());
+  }
+  /// pdf(d) for unit direction `d` at `at` = uv(d).
+  float pdf_at(const Vec3& d, const Vec2& at) const {
+    const SphereTexture& frame = *image_;
+    const float east = glm::dot(d, frame.east()), front = glm::dot(d, frame.front());
+    // sin(theta) from the components across the pole, which keep their precision near it.
+    const float sine = std::sqrt(east * east + front * front);
+    if (!(sine > 0.0f)) return 0.0f;
+    return distribution_.pdf(at) / (kTwoPiSquared * std::min(sine, 1.0f));
+  }
 
   Color color_{0.0f};
   std::optional<SphereTexture> image_;

@@ -99,21 +99,28 @@ class PathContext {
   template <typename F>
   Vec3For<F> escaped(MaskFor<F> lanes, const Vec3For<F>& direction, F from_pdf) const {
     const Environment& environment = scene_.environment();
-    Vec3For<F> radiance = environment.radiance<F>(lanes, direction);
     if constexpr (kSamplesEmitters) {
-      if (!samples_environment_) return radiance;
-      const MaskFor<F> weighed = lanes && from_pdf > 0.0f;
-      if (!any(weighed)) return radiance;
-      F weight = splat<F>(1.0f);
-      for (int i = 0; i < kLanesOf<F>; ++i)
-        if (lane(weighed, i))
-          set_lane(
-              weight, i,
-              C::light_sampling::bounce_weight(
-                  lane(from_pdf, i), environment_share_ * environment.pdf(lane(direction, i))));
-      radiance = radiance * weight;
+      if (samples_environment_) {
+        // Lane by lane, the map from each direction to the image computed once for its radiance
+        // and its density.
+        Vec3For<F> radiance = splat_vector<Vec3For<F>>(Color(0.0f));
+        for (int i = 0; i < kLanesOf<F>; ++i) {
+          if (!lane(lanes, i)) continue;
+          const Vec3 d = lane(direction, i);
+          const float bounce = lane(from_pdf, i);
+          if (bounce > 0.0f) {
+            const Environment::Found found = environment.find(d);
+            set_lane(radiance, i,
+                     found.radiance *
+                         C::light_sampling::bounce_weight(bounce, environment_share_ * found.pdf));
+          } else {
+            set_lane(radiance, i, environment.radiance(d));
+          }
+        }
+        return radiance;
+      }
     }
-    return radiance;
+    return environment.radiance<F>(lanes, direction);
   }
 
   /// The lanes whose hit at `depth` scatters light (gathers it and may bounce): at most
