@@ -3,11 +3,11 @@
 // quadrature of the image's radiance in double, with every estimator (the path tracer sampling
 // the image and weighing what its bounces find, the path tracer finding it by bounces only, the
 // report's tree with and without light sampling, bidirectional path tracing and vertex
-// connection and merging, which find it from camera subpaths); on a scene of a floor, a diffuse
-// ball, a glass ball, a mirror and a lamp under the sky, the path tracer with and without
-// sampling the image and bidirectional path tracing agree (Holm family); the wavefront renderer
-// gives the scalar one's bits, and the image is the same for any threads and tiles; light
-// tracing refuses a scene lit by an image, naming the line.
+// connection and merging, which also join to it and start light paths from it); on a scene of a
+// floor, a diffuse ball, a glass ball, a mirror and a lamp under the sky, the path tracer with
+// and without sampling the image, bidirectional path tracing and vertex merging agree (Holm
+// family); the wavefront renderer gives the scalar one's bits, and the image is the same for any
+// threads and tiles; light tracing refuses a scene lit by an image, naming the line.
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -136,8 +136,8 @@ sphere    center=0,3.5,0 radius=0.3 diffuse=0 emission=6,5,4
 )";
 
 TEST_CASE(
-    "under a sky, the path tracer with and without sampling it and bidirectional path "
-    "tracing agree",
+    "under a sky, the path tracer with and without sampling it, bidirectional path tracing and "
+    "vertex merging agree",
     "[render][environment][statistical]") {
   const glint::Scene scene = under_sky(kSkyScene);
   glint_test::ComparisonFamily family;
@@ -150,8 +150,12 @@ TEST_CASE(
   const double by_both = glint_test::compare_independent(
       family, "sky scene, bidirectional against path tracing", sampled,
       glint_test::render_blocks<glint::Renderer<glint::variants::bidirectional>>(scene, 300, 64));
+  const double by_merging = glint_test::compare_independent(
+      family, "sky scene, vertex merging against path tracing", sampled,
+      glint_test::render_blocks<glint::Renderer<glint::variants::vcm>>(scene, 400, 64));
   CHECK(by_bounces > 0.01);
   CHECK(by_both > 0.01);
+  CHECK(by_merging > 0.01);
   family.check();
 }
 
@@ -165,6 +169,7 @@ TEST_CASE("under a sky, the wavefront renderer gives the scalar one's bits, for 
   (void)glint_test::check_same_bits<glint::Renderer<glint::variants::fast>>(scene, settings);
   (void)glint_test::check_same_bits<glint::Renderer<glint::variants::bidirectional>>(scene,
                                                                                      settings);
+  (void)glint_test::check_same_bits<glint::Renderer<glint::variants::vcm>>(scene, settings);
 }
 
 TEST_CASE("light tracing refuses a scene lit by an image, naming the background's line",

@@ -313,6 +313,10 @@ TEST_CASE("the environment light's paths enter through the bounding sphere's dis
   description.spheres.push_back({});
   description.spheres[0].center = Vec3(1.0f, 2.0f, 3.0f);
   description.spheres[0].radius = 2.0f;
+  // A floor: a wall, which the bounds leave out.
+  description.spheres.push_back({});
+  description.spheres[1].center = Vec3(0.0f, -100000.0f, 0.0f);
+  description.spheres[1].radius = 1e5f;
   description.camera.position = Vec3(1.0f, 2.0f, -3.0f);
   description.camera.look_at = Vec3(1.0f, 2.0f, 3.0f);
   description.background_image = sky();
@@ -321,6 +325,7 @@ TEST_CASE("the environment light's paths enter through the bounding sphere's dis
   // Holds the sphere and the camera.
   CHECK(glm::length(Vec3(1.0f, 2.0f, 3.0f) - bounds.center) + 2.0f <= bounds.radius);
   CHECK(glm::length(Vec3(1.0f, 2.0f, -3.0f) - bounds.center) <= bounds.radius);
+  CHECK(bounds.radius < 10.0f);
 
   const glint::EnvironmentLight light(scene);
   glint::Pcg32 rng(31u, 2u);
@@ -334,6 +339,14 @@ TEST_CASE("the environment light's paths enter through the bounding sphere's dis
     const Vec3 offset = emitted.ray.origin - bounds.center;
     REQUIRE(glm::dot(offset, towards) == Approx(bounds.radius).epsilon(1e-4));
     REQUIRE(glm::length(offset - glm::dot(offset, towards) * towards) <= bounds.radius * 1.0001f);
+    // Every point along the ray within the bounding sphere is reached with the disc's density;
+    // a point before the disc, or outside its cylinder, by no light path.
+    for (const float t : {0.5f, 1.0f, 1.9f})
+      REQUIRE(light.disc_density(towards, emitted.ray.at(t * bounds.radius)) ==
+              emitted.position_pdf);
+    REQUIRE(light.disc_density(towards, emitted.ray.at(-0.1f * bounds.radius)) == 0.0f);
+    const Vec3 sideways = glm::normalize(glm::cross(towards, Vec3(0.3f, 0.5f, 0.7f)));
+    REQUIRE(light.disc_density(towards, bounds.center + 1.01f * bounds.radius * sideways) == 0.0f);
     const glint::EmissionDensity density = light.pdf_le(emitted.normal, emitted.ray.direction);
     REQUIRE(density.position == emitted.position_pdf);
     // The same but where rounding moves the drawn direction across a texel's edge.

@@ -82,6 +82,9 @@ struct EmissionDensity {
 
 /// A light an estimator can sample from a point and start light paths from.
 ///  - `kDeltaPosition`: the light is a point, which no ray meets: only sampling finds it.
+///  - `kAtInfinity`: the light lies infinitely far away (the environment): its light arrives
+///    where a ray escapes, its density is per unit solid angle, and a light path's first point
+///    lies on a disc facing its direction, with a density per unit area of the disc.
 ///  - `sample_li(at, u)`: light arriving at `at` from a direction drawn by `u`.
 ///  - `pdf_li(at, direction, distance, normal)`: the density with which sample_li gives
 ///    `direction`, where the ray from `at` along it meets the light at `distance` with outward
@@ -94,6 +97,7 @@ struct EmissionDensity {
 template <typename L>
 concept Light = requires(const L& light, const LightPoint& at, Vec2 u, const Vec3& v, float t) {
   { L::kDeltaPosition } -> std::convertible_to<bool>;
+  { L::kAtInfinity } -> std::convertible_to<bool>;
   { light.sample_li(at, u) } -> std::same_as<LightSample>;
   { light.pdf_li(at, v, t, v) } -> std::same_as<float>;
   { light.sample_le(u, u) } -> std::same_as<EmittedRay>;

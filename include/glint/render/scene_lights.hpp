@@ -4,21 +4,25 @@
 // it through visit(), which calls a generic callable with the light's own type: no virtual call,
 // and no estimator names a kind.
 //
-// The background is not among them: camera paths meet it when they escape, and no other
-// strategy finds its light (it starts no light paths), so light tracing alone needs a black
-// background (light_paths_carry_all_light).
+// The background's image is among them (EnvironmentLight, last): bidirectional path tracing and
+// vertex merging join to it and start light paths from it. A background of one colour is not: a
+// camera path meets it when it escapes and no other strategy finds it. Light tracing, whose
+// light paths can never reach the camera from infinitely far away, needs a black background
+// (light_paths_carry_all_light).
 //
 // To add a kind of light: a type that satisfies Light, a list of it in SceneLights's
 // constructor, and its place in SceneLightKinds.
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <tuple>
 #include <utility>
 #include <vector>
 
 #include "glint/instruction_set.hpp"
 #include "glint/render/light.hpp"
+#include "glint/render/lights/environment_light.hpp"
 #include "glint/render/lights/point_light_source.hpp"
 #include "glint/render/lights/sphere_light.hpp"
 #include "glint/scene/emitters.hpp"
@@ -31,7 +35,7 @@ template <Light... Kinds>
 struct LightKinds {
   using Lists = std::tuple<std::vector<Kinds>...>;
 };
-using SceneLightKinds = LightKinds<PointLightSource, SphereLight>;
+using SceneLightKinds = LightKinds<PointLightSource, SphereLight, EnvironmentLight>;
 
 /// A light of a scene: its place in the lists of every kind, taken in order.
 using LightId = std::uint32_t;
@@ -51,6 +55,8 @@ class SceneLights {
     auto& spheres = std::get<std::vector<SphereLight>>(lists_);
     for (const SphereEmitter& emitter : scene.emitters().emitters())
       spheres.emplace_back(emitter);
+    if (scene.environment().has_image() && !scene.environment().is_black())
+      std::get<std::vector<EnvironmentLight>>(lists_).emplace_back(scene);
   }
 
   /// The number of lights of every kind.
@@ -61,6 +67,12 @@ class SceneLights {
   /// The light of emissive sphere `emitter` (its index in the scene's emitters).
   LightId sphere_light(std::uint32_t emitter) const {
     return LightId(std::get<std::vector<PointLightSource>>(lists_).size() + emitter);
+  }
+
+  /// The environment's light, if the scene's background is an image that is not black.
+  std::optional<LightId> environment_light() const {
+    if (std::get<std::vector<EnvironmentLight>>(lists_).empty()) return std::nullopt;
+    return LightId(size() - 1);
   }
 
   /// Calls f(light) with light `id` as its own type, and returns what f returns (the same type

@@ -66,25 +66,27 @@ struct BoundingSphere {
   float radius = 0.0f;
 };
 
-/// The ball about the middle of the box of a scene's spheres, point lights and camera that holds
-/// them all, its radius rounded up.
-inline BoundingSphere bounding_sphere_of(const SceneDescription& description) {
+/// The ball about the middle of the box of a scene's spheres that `counts` (every sphere but the
+/// walls, for Scene), point lights and camera that holds them all, its radius rounded up.
+template <typename Counts>
+BoundingSphere bounding_sphere_of(const SceneDescription& description, Counts&& counts) {
   glm::dvec3 low(description.camera.position), high(description.camera.position);
   const auto extend = [&](const Vec3& center, float radius) {
     low = glm::min(low, glm::dvec3(center) - double(radius));
     high = glm::max(high, glm::dvec3(center) + double(radius));
   };
   for (const SphereDescription& sphere : description.spheres)
-    extend(sphere.center, sphere.radius);
+    if (counts(sphere)) extend(sphere.center, sphere.radius);
   for (const PointLight& light : description.lights)
     extend(light.position, 0.0f);
   const glm::dvec3 middle = 0.5 * (low + high);
   double radius = glm::length(glm::dvec3(description.camera.position) - middle);
   for (const SphereDescription& sphere : description.spheres)
-    radius = std::max(radius, glm::length(glm::dvec3(sphere.center) - middle) + sphere.radius);
+    if (counts(sphere))
+      radius = std::max(radius, glm::length(glm::dvec3(sphere.center) - middle) + sphere.radius);
   for (const PointLight& light : description.lights)
     radius = std::max(radius, glm::length(glm::dvec3(light.position) - middle));
-  return {Vec3(middle), float(radius * (1.0 + 1e-6)) + 1e-6f};
+  return {Vec3(middle), std::max(float(radius * (1.0 + 1e-6)), 1e-3f)};
 }
 
 class Scene {
@@ -111,10 +113,12 @@ class Scene {
                           description.background_scale)
             : Environment(description.background);
     scene.background_line_ = description.background_line;
-    scene.bounds_ = bounding_sphere_of(description);
     scene.lights_ = description.lights;
     const InclusionTree tree = build_inclusion_tree(description);
     const float huge_radius = huge_radius_threshold(description);
+    scene.bounds_ = bounding_sphere_of(description, [&](const SphereDescription& sphere) {
+      return !is_wall(sphere, huge_radius, description.camera.position);
+    });
     const bool linear = description.spheres.size() <= linear_scene_size;
     std::vector<SphereBvh::Input> hierarchy_spheres;
     std::vector<SphereEmitter> emitters;
@@ -201,8 +205,9 @@ class Scene {
   const Environment& environment() const { return environment_; }
   /// The line of the scene file that set the background (0 if none did).
   int background_line() const { return background_line_; }
-  /// A sphere that holds every sphere, point light and the camera: where light from the
-  /// environment enters the scene (render/lights/environment_light.hpp).
+  /// A ball that holds every sphere but the walls (huge spheres such as a floor, and those whose
+  /// surface is nearer the camera than their radius), every point light and the camera: where
+  /// light paths from the environment enter the scene (render/lights/environment_light.hpp).
   const BoundingSphere& bounds() const { return bounds_; }
   /// The image settings and pixel filter width the scene asks for.
   const ImageDescription& image() const { return image_; }

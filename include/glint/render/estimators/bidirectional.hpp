@@ -36,6 +36,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <type_traits>
 
 #include "glint/config.hpp"
 #include "glint/geometry/ray.hpp"
@@ -54,8 +55,12 @@
 namespace glint::inline GLINT_ISA_NAMESPACE {
 
 /// What a vertex of a subpath is: the camera, a light at a point (which only sampling finds), a
-/// light with a surface, or a surface that scatters.
-enum class PathVertexKind : std::uint8_t { camera, delta_light, area_light, surface };
+/// light with a surface, a surface that scatters, or the environment: a light infinitely far
+/// away, whose vertex stands for a direction (as pbrt-v4's BDPT keeps its infinite lights). On a
+/// camera subpath it is where an escaping ray meets the image; its `point` lies one unit along
+/// that ray and `facing` holds the ray's direction. On a light subpath it is the point of the
+/// disc the light path started from (EnvironmentLight::sample_le).
+enum class PathVertexKind : std::uint8_t { camera, delta_light, area_light, surface, environment };
 
 /// A vertex of a camera or a light subpath; `Record` is the material's record of its Bsdf there
 /// (RecordableBsdf), which the weights below never read.
@@ -91,7 +96,9 @@ struct BasicPathVertex {
   /// at this vertex (detail::strategy_tails). Set once the subpath is complete.
   float strategy_tail = 0.0f;
 
-  bool is_light() const { return kind == Kind::delta_light || kind == Kind::area_light; }
+  bool is_light() const {
+    return kind == Kind::delta_light || kind == Kind::area_light || kind == Kind::environment;
+  }
   /// Whether a join may end at this vertex: it scatters (or emits, or sees) in every direction.
   bool joinable() const { return kind != Kind::surface || scattering.has_density(); }
 };
@@ -103,10 +110,19 @@ using PathVertexOf = BasicPathVertex<typename BsdfAt<C>::Record>;
 namespace detail {
 
 /// Density per unit area at `to` of a direction from `from` of density `solid_angle_pdf`:
-/// |cos| at `to` over the squared distance (no cosine where `to` is not on a surface).
+/// |cos| at `to` over the squared distance (no cosine where `to` is not on a surface). Towards
+/// the environment, which has no area, the density stays per unit solid angle; from it, the
+/// density given is the disc's per unit area (EnvironmentLight::disc_density), and only the
+/// cosine at `to` converts it, parallel rays keeping their spacing.
 template <typename V>
 float area_density(float solid_angle_pdf, const V& from, const V& to) {
+  if (to.kind == PathVertexKind::environment) return solid_angle_pdf;
   const Vec3 offset = to.point - from.point;
+  if (from.kind == PathVertexKind::environment) {
+    const bool on_surface = to.kind == PathVertexKind::surface;
+    return on_surface ? solid_angle_pdf * std::fabs(glm::dot(to.normal, glm::normalize(offset)))
+                      : solid_angle_pdf;
+  }
   const float distance2 = glm::dot(offset, offset);
   if (!(distance2 > 0.0f)) return 0.0f;
   float pdf = solid_angle_pdf / distance2;
@@ -128,6 +144,10 @@ inline float nonzero(float pdf) {
 /// subpath has no such vertex.
 struct JoinDensities {
   float light_end = 0.0f, light_before = 0.0f, camera_end = 0.0f, camera_before = 0.0f;
+  /// No light path reaches the camera end (or the vertex before it), which a zero density would
+  /// not say (a zero is a delta's, read as one): a point of a huge sphere outside the disc light
+  /// paths from the environment enter through. The strategies that would need one do not count.
+  bool camera_end_unreachable = false, camera_before_unreachable = false;
 };
 
 /// How the strategies that compete for a path are counted.
@@ -169,6 +189,9 @@ float other_strategies(std::span<const V> light, std::span<const V> camera,
   // Fewer camera vertices: camera[i] made by the light side. Strategy (s + t - i, i).
   float ratio = 1.0f;
   for (std::size_t i = t - 1; i > 0; --i) {
+    if ((i + 1 == t && join.camera_end_unreachable) ||
+        (i + 2 == t && join.camera_before_unreachable))
+      break;
     const float reverse = nonzero(camera_reverse(i));
     // Merging at camera[i]: not at the path's light end (s = 0: camera[t - 1] is on a lamp).
     if (eta > 0.0f && camera[i].kind == PathVertexKind::surface && !camera_delta(i) &&
@@ -178,7 +201,10 @@ float other_strategies(std::span<const V> light, std::span<const V> camera,
     }
     ratio *= reverse / nonzero(camera[i].pdf_forward);
     const bool joinable = !camera_delta(i) && !camera_delta(i - 1);
-    if (joinable && (i > 1 || rules.light_tracing_counts)) sum += ratio * ratio;
+    // The camera cannot be joined to the environment, which lies infinitely far away.
+    const bool to_camera_possible =
+        i > 1 || (rules.light_tracing_counts && camera[1].kind != PathVertexKind::environment);
+    if (joinable && to_camera_possible) sum += ratio * ratio;
   }
   // Fewer light vertices: light[i] made by the camera side. Strategy (i, s + t - i).
   ratio = 1.0f;
@@ -562,18 +588,24 @@ class BidirectionalPathTracer {
       const EmittedRay emitted = light.sample_le(u_point, u_direction);
       Vertex& source = y[0];
       source = Vertex{};
-      source.kind = light.kDeltaPosition ? Kind::delta_light : Kind::area_light;
+      source.kind = light.kAtInfinity      ? Kind::environment
+                    : light.kDeltaPosition ? Kind::delta_light
+                                           : Kind::area_light;
       source.point = emitted.ray.origin;
       source.normal = emitted.normal;
       source.sphere = emitted.sphere;
       source.light = choice.light;
-      source.pdf_forward = choice.probability * emitted.position_pdf;
+      // A light at infinity is a direction first, then a point of the disc: its vertex's
+      // density is the direction's, and the next vertex's comes from the disc's (area_density).
+      source.pdf_forward =
+          choice.probability * (light.kAtInfinity ? emitted.direction_pdf : emitted.position_pdf);
       source.beta = emitted.origin_weight(choice.probability);
       const Color beta = emitted.ray_weight(choice.probability);
       if (!(max_component(beta) > 0.0f)) return std::size_t(1);
       Color unused(0.0f);
-      return walk(emitted.ray, beta, emitted.direction_pdf, sampler, y, 1, Transport::importance,
-                  unused, counters);
+      return walk(emitted.ray, beta,
+                  light.kAtInfinity ? emitted.position_pdf : emitted.direction_pdf, sampler, y, 1,
+                  Transport::importance, unused, counters);
     });
   }
 
@@ -590,8 +622,21 @@ class BidirectionalPathTracer {
     for (;;) {
       const std::optional<SphereHit> hit = context_.closest_hit(ray, counters);
       if (!hit) {
-        if (mode == Transport::radiance)
-          background += beta * context_.scene().environment().radiance(ray.direction);
+        if (mode != Transport::radiance) return n;
+        // The environment's image is a light that other strategies reach: the escape is a
+        // vertex on it, strategy s = 0 (emitted). A background of one colour only this finds.
+        if (const std::optional<LightId> environment = lights_.environment_light()) {
+          Vertex& vertex = v[n];
+          vertex = Vertex{};
+          vertex.kind = Kind::environment;
+          vertex.point = ray.origin + ray.direction;
+          vertex.facing = ray.direction;
+          vertex.light = *environment;
+          vertex.beta = beta;
+          vertex.pdf_forward = detail::area_density(direction_pdf, v[n - 1], vertex);
+          return n + 1;
+        }
+        background += beta * context_.scene().environment().radiance(ray.direction);
         return n;
       }
       const SurfaceInteraction it = context_.interaction(ray, *hit);
@@ -656,10 +701,15 @@ class BidirectionalPathTracer {
     return detail::area_density(v.scattering.pdf(v.facing, arrival, towards(v, to)), v, to);
   }
 
-  /// Density per unit area with which light vertex `v` emits towards `to`.
+  /// Density per unit area with which light vertex `v` emits towards `to`: for the
+  /// environment, that of the light path through its disc that reaches `to` (zero where none
+  /// does), times the cosine at `to`.
   float emission_density(const Vertex& v, const Vertex& to) const {
     const float pdf = lights_.visit(v.light, [&](const auto& light) {
-      return light.pdf_le(v.normal, towards(v, to)).direction;
+      if constexpr (std::remove_cvref_t<decltype(light)>::kAtInfinity)
+        return light.disc_density(towards(to, v), to.point);
+      else
+        return light.pdf_le(v.normal, towards(v, to)).direction;
     });
     return detail::area_density(pdf, v, to);
   }
@@ -688,10 +738,23 @@ class BidirectionalPathTracer {
     return enters_hit == (glm::dot(direction, b.normal) < 0.0f);
   }
 
-  /// Strategy s = 0: the camera subpath's last vertex on an emissive sphere.
+  /// Strategy s = 0: the camera subpath's last vertex on an emissive sphere or on the
+  /// environment.
   Color emitted(std::span<const Vertex> z, const StrategyRules& rules) const {
     const std::size_t t = z.size();
     const Vertex& pt = z[t - 1];
+    if (pt.kind == Kind::environment) {
+      // As a light's vertex: the density of its direction, chosen as light subpaths choose it,
+      // and the disc's towards z[t - 2].
+      const Environment::Found found = scene_.environment().find(pt.facing);
+      const float from_disc = emission_density(pt, z[t - 2]);
+      const float weight =
+          detail::join_weight({}, z,
+                              {0.0f, 0.0f, selection_.probability(pt.light) * found.pdf, from_disc,
+                               false, !(from_disc > 0.0f)},
+                              rules);
+      return pt.beta * found.radiance * weight;
+    }
     const std::uint32_t emitter = scene_.surface(pt.sphere).emitter;
     if (emitter == kNotAnEmitter) return Color(0.0f);
     const Color le = scene_.surface(pt.sphere).material.emission;
@@ -789,6 +852,16 @@ class BidirectionalPathTracer {
       ++counters.rays;
       const Ray ray =
           ray_leaving_sphere(pt.point, sample.direction, pt.sphere, pt.normal, sample.distance);
+      if constexpr (std::remove_cvref_t<decltype(source)>::kAtInfinity) {
+        // The light arrives where the ray escapes; its vertex stands for the direction, with
+        // the density light subpaths give it (as emitted() counts it).
+        if (scene_.occluded(ray)) return Color(0.0f);
+        light.kind = Kind::environment;
+        light.point = pt.point + sample.direction;
+        light.facing = sample.direction;
+        light.pdf_forward = choice.probability * source.environment().pdf(sample.direction);
+        return arriving;
+      }
       if (sample.sphere == kNoSphere) {
         if (scene_.occluded(ray)) return Color(0.0f);
         light.point = sample.point;
@@ -805,11 +878,14 @@ class BidirectionalPathTracer {
       return arriving;
     });
     if (value == Color(0.0f)) return Color(0.0f);
-    const float weight = detail::join_weight(
-        std::span<const Vertex>(&light, 1), z,
-        {area_density_from(pt, to_camera_side, light), 0.0f, emission_density(light, pt),
-         area_density_from(pt, towards(pt, light), z[t - 2])},
-        rules);
+    // The light's density for pt; zero where no light path from the environment reaches it.
+    const float to_vertex = emission_density(light, pt);
+    const float weight =
+        detail::join_weight(std::span<const Vertex>(&light, 1), z,
+                            {area_density_from(pt, to_camera_side, light), 0.0f, to_vertex,
+                             area_density_from(pt, towards(pt, light), z[t - 2]),
+                             light.kind == Kind::environment && !(to_vertex > 0.0f)},
+                            rules);
     return value * weight;
   }
 

@@ -27,6 +27,7 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 class EnvironmentLight {
  public:
   static constexpr bool kDeltaPosition = false;
+  static constexpr bool kAtInfinity = true;
 
   /// The environment of `scene`, which must have an image (Environment::has_image).
   explicit EnvironmentLight(const Scene& scene)
@@ -53,7 +54,7 @@ class EnvironmentLight {
         const Environment::DirectionSample drawn = environment_->sample(u);
         sample.direction = drawn.direction;
         sample.pdf = drawn.pdf;
-        sample.radiance = environment_->radiance(drawn.direction);
+        sample.radiance = environment_->radiance_at(drawn.uv);
         sample.valid = drawn.pdf > 0.0f;
       }
     } else {
@@ -88,7 +89,7 @@ class EnvironmentLight {
     ray.origin = bounds_.center +
                  bounds_.radius * (towards + disc.x * frame.tangent + disc.y * frame.bitangent);
     ray.direction = -towards;
-    return {ray,      environment_->radiance(towards), 1.0f, disc_pdf(), drawn.pdf, Vec3(0.0f),
+    return {ray,      environment_->radiance_at(drawn.uv), 1.0f, disc_pdf(), drawn.pdf, Vec3(0.0f),
             kNoSphere};
   }
 
@@ -96,6 +97,18 @@ class EnvironmentLight {
   /// disc faces every ray it starts).
   EmissionDensity pdf_le(const Vec3&, const Vec3& direction) const {
     return {disc_pdf(), environment_->pdf(-direction)};
+  }
+
+  /// The density per unit area, on the disc sample_le starts light paths from, of the light path
+  /// that reaches `point` along the reverse of unit direction `towards` (towards the light):
+  /// that of sample_le where the point lies within the disc's cylinder and not before the disc,
+  /// zero elsewhere (no light path reaches it).
+  float disc_density(const Vec3& towards, const Vec3& point) const {
+    const Vec3 offset = point - bounds_.center;
+    const float along = glm::dot(offset, towards);
+    const Vec3 across = offset - along * towards;
+    const float radius2 = bounds_.radius * bounds_.radius;
+    return along <= bounds_.radius && glm::dot(across, across) <= radius2 ? disc_pdf() : 0.0f;
   }
 
   /// A light path never starts on a surface of the environment.

@@ -20,6 +20,7 @@ namespace glint::inline GLINT_ISA_NAMESPACE {
 class PointLightSource {
  public:
   static constexpr bool kDeltaPosition = true;
+  static constexpr bool kAtInfinity = false;
 
   explicit PointLightSource(const PointLight& light)
       : position_(light.position), intensity_(light.intensity), color_(light.color) {}

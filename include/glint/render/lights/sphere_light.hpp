@@ -52,6 +52,7 @@ inline F cone_one_minus_cos_max(F radius, F distance) {
 template <typename F>
 struct BasicSphereLight {
   static constexpr bool kDeltaPosition = false;
+  static constexpr bool kAtInfinity = false;
 
   Vec3For<F> center;
   F radius;
