@@ -226,7 +226,7 @@ TEST_CASE("the environment's image lies as glint's equirectangular camera films 
 }
 
 TEST_CASE("an environment of one colour is that colour, times its scale, in every direction",
-          "[environment][unit]") {
+          "[environment][statistical]") {
   const Color color(0.3f, 1.7f, 0.05f);
   const glint::Environment environment(image(8, 4, [&](int, int) { return color; }),
                                        glint::TexturePlacement{Vec3(1.0f, 2.0f, 3.0f), 17.0f},
@@ -236,8 +236,25 @@ TEST_CASE("an environment of one colour is that colour, times its scale, in ever
   glint::Pcg32 rng(2u, 8u);
   for (int i = 0; i < 500; ++i)
     REQUIRE(environment.radiance(random_direction(rng)) == 2.0f * color);
-  // A constant environment and a black one.
-  CHECK(glint::Environment(color).radiance(Vec3(0.0f, 0.0f, 1.0f)) == color);
+  // A constant environment and a black one. A colour's directions are drawn uniformly.
+  const glint::Environment constant(color);
+  CHECK(constant.radiance(Vec3(0.0f, 0.0f, 1.0f)) == color);
+  CHECK(constant.find(Vec3(0.6f, 0.8f, 0.0f)).radiance == color);
+  CHECK(constant.find(Vec3(0.6f, 0.8f, 0.0f)).pdf == Approx(1.0 / (4.0 * kPi)));
+  CHECK(constant.pdf(Vec3(0.0f, -1.0f, 0.0f)) == Approx(1.0 / (4.0 * kPi)));
+  struct Drawn {
+    Vec3 direction;
+    bool delta;
+  };
+  glint::Pcg32 draws(3u, 3u);
+  CHECK_FALSE(glint::test::sampling_against_density(
+                  [&] {
+                    const glint::Environment::DirectionSample s = constant.sample(next_2d(draws));
+                    REQUIRE(s.pdf == constant.pdf(s.direction));
+                    return Drawn{s.direction, false};
+                  },
+                  [&](const Vec3& d) { return constant.pdf(d); }, 100000)
+                  .rejected());
   CHECK(glint::Environment().is_black());
   CHECK(glint::Environment(image(2, 2, [](int, int) { return Color(0.0f); }),
                            glint::TexturePlacement{}, 1.0f)

@@ -4,11 +4,10 @@
 // it through visit(), which calls a generic callable with the light's own type: no virtual call,
 // and no estimator names a kind.
 //
-// The background's image is among them (EnvironmentLight, last): bidirectional path tracing and
-// vertex merging join to it and start light paths from it. A background of one colour is not: a
-// camera path meets it when it escapes and no other strategy finds it. Light tracing, whose
-// light paths can never reach the camera from infinitely far away, needs a black background
-// (light_paths_carry_all_light).
+// The background is among them, an image or a colour that is not black (EnvironmentLight, last):
+// bidirectional path tracing and vertex merging join to it and start light paths from it. Light
+// tracing, whose light paths can never reach the camera from infinitely far away, needs a black
+// background (light_paths_carry_all_light).
 //
 // To add a kind of light: a type that satisfies Light, a list of it in SceneLights's
 // constructor, and its place in SceneLightKinds.
@@ -55,7 +54,7 @@ class SceneLights {
     auto& spheres = std::get<std::vector<SphereLight>>(lists_);
     for (const SphereEmitter& emitter : scene.emitters().emitters())
       spheres.emplace_back(emitter);
-    if (scene.environment().has_image() && !scene.environment().is_black())
+    if (!scene.environment().is_black())
       std::get<std::vector<EnvironmentLight>>(lists_).emplace_back(scene);
   }
 
@@ -69,7 +68,7 @@ class SceneLights {
     return LightId(std::get<std::vector<PointLightSource>>(lists_).size() + emitter);
   }
 
-  /// The environment's light, if the scene's background is an image that is not black.
+  /// The environment's light, if the scene's background is not black.
   std::optional<LightId> environment_light() const {
     if (std::get<std::vector<EnvironmentLight>>(lists_).empty()) return std::nullopt;
     return LightId(size() - 1);

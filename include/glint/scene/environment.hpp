@@ -4,7 +4,8 @@
 // out as glint's equirectangular camera films it (render/camera.hpp): a panorama rendered with
 // the camera at the origin looking along +z with up +y lights a scene as that scene saw it, with
 // the default placement. Its directions can be drawn in proportion to its light (sample, pdf),
-// from a piecewise-constant table over the image (math/piecewise_constant.hpp).
+// from a piecewise-constant table over the image (math/piecewise_constant.hpp), and uniformly
+// over the sphere for a colour.
 //
 // Units: radiance, W / (m^2 sr). A direction points from the scene towards where the light comes
 // from: an escaping ray's own direction.
@@ -22,6 +23,7 @@
 #include "glint/math/elementary_functions.hpp"
 #include "glint/math/equirectangular.hpp"
 #include "glint/math/piecewise_constant.hpp"
+#include "glint/math/sampling.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/math/wide.hpp"
 #include "glint/scene/sphere_texture.hpp"
@@ -83,10 +85,14 @@ class Environment {
     if (!image_) return color_;
     return radiance_at(uv(d));
   }
-  /// The radiance at (u, v) of an image (requires has_image()).
-  Color radiance_at(const Vec2& uv) const { return scale_ * image_->image().filtered(uv.x, uv.y); }
-  /// radiance(d) and pdf(d) of an image (requires has_image()), the map computed once.
+  /// The radiance at (u, v) of the image (the colour, without one).
+  Color radiance_at(const Vec2& uv) const {
+    if (!image_) return color_;
+    return scale_ * image_->image().filtered(uv.x, uv.y);
+  }
+  /// radiance(d) and pdf(d), the map computed once.
   Found find(const Vec3& d) const {
+    if (!image_) return {color_, kUniformPdf};
     const Vec2 at = uv(d);
     return {radiance_at(at), pdf_at(d, at)};
   }
@@ -106,11 +112,13 @@ class Environment {
     }
   }
 
-  /// A direction drawn in proportion to the image's light (requires has_image()), by two
-  /// uniform numbers, with its density: the table's density at the drawn point of the image's
-  /// square over the solid angle per unit area of the square there, 2 pi^2 sin(theta). That is
-  /// pdf(direction) but where rounding moves the direction across a texel's edge.
+  /// A direction drawn in proportion to the image's light by two uniform numbers, with its
+  /// density: the table's density at the drawn point of the image's square over the solid angle
+  /// per unit area of the square there, 2 pi^2 sin(theta). That is pdf(direction) but where
+  /// rounding moves the direction across a texel's edge. Without an image, uniform over the
+  /// sphere of directions.
   DirectionSample sample(const Vec2& u) const {
+    if (!image_) return {sample_uniform_sphere(u), Vec2(0.0f), kUniformPdf};
     const PiecewiseConstant2D::Sample drawn = distribution_.sample(u);
     const Vec3 local = equirectangular_direction(drawn.uv);
     const float sine = std::sqrt(local.x * local.x + local.z * local.z);
@@ -118,8 +126,8 @@ class Environment {
             sine > 0.0f ? drawn.pdf / (kTwoPiSquared * std::min(sine, 1.0f)) : 0.0f};
   }
   /// The density per unit solid angle with which sample() gives unit direction `d`, zero at the
-  /// poles.
-  float pdf(const Vec3& d) const { return pdf_at(d, uv(d)); }
+  /// poles of an image.
+  float pdf(const Vec3& d) const { return image_ ? pdf_at(d, uv(d)) : kUniformPdf; }
 
   /// The mean radiance over all directions (of the channels' mean), in double.
   double mean_radiance() const {
@@ -160,6 +168,7 @@ class Environment {
   }
 
   static constexpr float kTwoPiSquared = 2.0f * kPi * kPi;
+  static constexpr float kUniformPdf = 0.25f * kInvPi;
 
   /// A direction of the image's frame (equirectangular_uv's axes, u mirrored) in the scene's.
   Vec3 to_world(const Vec3& local) const {

@@ -602,6 +602,16 @@ class BidirectionalPathTracer {
       source.beta = emitted.origin_weight(choice.probability);
       const Color beta = emitted.ray_weight(choice.probability);
       if (!(max_component(beta) > 0.0f)) return std::size_t(1);
+      if constexpr (std::remove_cvref_t<decltype(light)>::kAtInfinity) {
+        // The light comes from infinitely far away: it reaches the disc's point only if nothing
+        // lies beyond it (a floor the disc dips below, the walls of a closed room), which the
+        // disc, holding the spheres but the walls, does not ensure by itself.
+        Ray from_light;
+        from_light.origin = emitted.ray.origin;
+        from_light.direction = -emitted.ray.direction;
+        ++counters.rays;
+        if (scene_.occluded(from_light)) return std::size_t(1);
+      }
       Color unused(0.0f);
       return walk(emitted.ray, beta,
                   light.kAtInfinity ? emitted.position_pdf : emitted.direction_pdf, sampler, y, 1,

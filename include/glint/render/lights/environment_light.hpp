@@ -1,10 +1,13 @@
 #pragma once
-// The scene's environment image as a light (render/light.hpp): light arriving from every
-// direction, infinitely far away. From a point it draws a direction in proportion to the image's
-// light (Environment::sample), and the light arrives where the ray escapes the scene. Light paths
-// enter the scene along a drawn direction through a uniform point of the disc of the scene's
-// bounding sphere that faces it (Scene::bounds), so that every point of the scene is reached
-// by parallel rays of every direction.
+// The scene's background as a light (render/light.hpp): light arriving from every direction,
+// infinitely far away, from an image or of one colour. From a point it draws a direction in
+// proportion to the image's light, or uniformly for a colour (Environment::sample), and the light
+// arrives where the ray escapes the scene (the path tracers draw from an image only: a colour
+// comes as well by their bounces). Light paths enter the scene along a drawn direction through a
+// uniform point of the disc of the scene's bounding sphere that faces it (Scene::bounds), so that
+// every point of the scene's content is reached by parallel rays of every direction; a light
+// path whose disc point something hides from the light (a floor the disc dips below, the walls of
+// a closed room) carries nothing, which the bidirectional estimators test.
 //
 // Units: radiance (W / (m^2 sr)). A light path's first vertex lies on that disc: its density is
 // per unit area of the disc, 1 / (pi r^2), and its direction's per unit solid angle, as a point
@@ -29,7 +32,7 @@ class EnvironmentLight {
   static constexpr bool kDeltaPosition = false;
   static constexpr bool kAtInfinity = true;
 
-  /// The environment of `scene`, which must have an image (Environment::has_image).
+  /// The environment of `scene`: its image, or its colour.
   explicit EnvironmentLight(const Scene& scene)
       : environment_(&scene.environment()), bounds_(scene.bounds()) {}
 
