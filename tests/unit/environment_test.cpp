@@ -371,6 +371,11 @@ TEST_CASE("the environment light's paths enter through the bounding sphere's dis
     carried.push_back(double(glint::channel_mean(emitted.ray_weight(1.0f))));
   }
   CHECK(across_edges <= n / 10000);
+  // A draw at the image's pole (a sampler may give u = 0 exactly) has no density: its path
+  // carries nothing, and no infinity.
+  REQUIRE(scene.environment().sample(Vec2(0.3f, 0.0f)).pdf == 0.0f);
+  const glint::EmittedRay pole = light.sample_le(Vec2(0.5f, 0.5f), Vec2(0.3f, 0.0f));
+  CHECK(glint::channel_mean(pole.ray_weight(1.0f)) == 0.0);
   // Each path carries its share of the power crossing the disc.
   const glint::test::Moments moments = glint::test::moments(carried);
   CHECK(std::fabs(moments.mean - light.power()) <=

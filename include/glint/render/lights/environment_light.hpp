@@ -92,6 +92,10 @@ class EnvironmentLight {
     ray.origin = bounds_.center +
                  bounds_.radius * (towards + disc.x * frame.tangent + disc.y * frame.bitangent);
     ray.direction = -towards;
+    // A draw at a pole of the image has no density to divide by (a sampler may give u = 0
+    // exactly): the path carries nothing.
+    if (!(drawn.pdf > 0.0f))
+      return {ray, Color(0.0f), 1.0f, disc_pdf(), 1.0f, Vec3(0.0f), kNoSphere};
     return {ray,      environment_->radiance_at(drawn.uv), 1.0f, disc_pdf(), drawn.pdf, Vec3(0.0f),
             kNoSphere};
   }
