@@ -16,8 +16,10 @@
 // each vertex keeps its Bsdf's record to be evaluated when joined. Mirror and refraction vertices
 // are deltas, passed through by the subpaths; point lights are deltas of
 // position, reached only by joins; the camera is a pinhole, reached only by joins. The
-// background, a colour or an image, is light that only camera subpaths find, so its weight is
-// one.
+// background, a colour or an image that is not black, is a light infinitely far away
+// (render/lights/environment_light.hpp): a camera subpath that escapes ends on it, joins reach it
+// by a direction, and light subpaths leave it through a disc facing that direction; its vertex
+// stands for the direction (PathVertexKind::environment).
 //
 // Densities are per unit area at the vertex they produce (per unit solid angle converted by
 // |cos| / distance^2), as pbrt-v4's BDPT keeps them; a vertex produced through a delta keeps no
