@@ -1,13 +1,14 @@
 // Scenes lit by an environment image (scene/environment.hpp) rendered: a diffuse ball under a sky
 // with a sun shows albedo / pi times the irradiance of the sky on its normal, worked out here by
-// quadrature of the image's radiance in double, with every estimator (the path tracer sampling
-// the image and weighing what its bounces find, the path tracer finding it by bounces only, the
-// report's tree with and without light sampling, bidirectional path tracing and vertex
-// connection and merging, which also join to it and start light paths from it); on a scene of a
-// floor, a diffuse ball, a glass ball, a mirror and a lamp under the sky, the path tracer with
-// and without sampling the image, bidirectional path tracing and vertex merging agree (Holm
-// family); the wavefront renderer gives the scalar one's bits, and the image is the same for any
-// threads and tiles; light tracing refuses a scene lit by an image, naming the line.
+// quadrature of the image's radiance in double, and under a colour L albedo x L, with every
+// estimator (the path tracer sampling the image and weighing what its bounces find, the path
+// tracer finding it by bounces only, the report's tree with and without light sampling,
+// bidirectional path tracing and vertex connection and merging, which also join to it and start
+// light paths from it); on a scene of a floor, a diffuse ball, a glass ball, a mirror and a lamp
+// under the sky, the path tracer with and without sampling the image, bidirectional path tracing
+// and vertex merging agree (Holm family); the wavefront renderer gives the scalar one's bits, and
+// the image is the same for any threads and tiles; light tracing refuses a scene lit by an image,
+// naming the line.
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -77,8 +78,10 @@ double irradiance(const glint::Environment& environment, const Vec3& normal, con
   return sum * d_cos * d_phi;
 }
 
-TEST_CASE("a diffuse ball under a sky shows albedo / pi times the sky's irradiance on its normal",
-          "[render][environment][statistical]") {
+TEST_CASE(
+    "a diffuse ball under a sky shows albedo / pi times the sky's irradiance on its normal, and "
+    "under a colour albedo times the colour",
+    "[render][environment][statistical]") {
   // One pixel whose ray (through its centre: sigma 0) travels along -z and meets the unit ball
   // at (x, 0, sqrt(1 - x^2)); every direction above the ball's surface there escapes.
   const float x = 0.6f;
@@ -90,27 +93,37 @@ TEST_CASE("a diffuse ball under a sky shows albedo / pi times the sky's irradian
       "antialias sigma=0\n"
       "sphere center=0,0,0 radius=1 color=0.7,0.5,0.3\n";
   const Vec3 axis = glm::normalize(Vec3(0.4f, 1.0f, 0.3f));
-  const glint::Scene scene = under_sky(text, axis);
-  const double expected = irradiance(scene.environment(), normal, albedo, 1024) / std::numbers::pi;
+  const glint::Scene sky_scene = under_sky(text, axis);
+  const double sky_expected =
+      irradiance(sky_scene.environment(), normal, albedo, 1024) / std::numbers::pi;
+  // A furnace: a colour L all round, reflected as albedo x L.
+  const glint::Scene colour_scene = glint::Scene::build(
+      glint::read_scene_text(text + "background color=0.8,0.6,0.4\n", "colour furnace"));
+  const double colour_expected = 0.7 * 0.8 + 0.5 * 0.6 + 0.3 * 0.4;
   glint_test::ComparisonFamily family;
   const auto check = [&]<typename R>() {
-    glint::RenderSettings settings = glint::RenderSettings::from(scene);
-    settings.threads = 1;
-    std::vector<double> differences;
-    for (std::uint64_t seed = 1; seed <= 32; ++seed) {
-      settings.seed = seed;
-      const glint::RenderResult result = glint_test::render_by<R>(scene, settings);
-      REQUIRE(result.stats.invalid_samples == 0);
-      const Color c = result.film.at(0, 0);
-      differences.push_back(double(c.x) + c.y + c.z - expected);
+    for (const bool colour : {false, true}) {
+      const glint::Scene& scene = colour ? colour_scene : sky_scene;
+      const double expected = colour ? colour_expected : sky_expected;
+      glint::RenderSettings settings = glint::RenderSettings::from(scene);
+      settings.threads = 1;
+      std::vector<double> differences;
+      for (std::uint64_t seed = 1; seed <= 32; ++seed) {
+        settings.seed = seed;
+        const glint::RenderResult result = glint_test::render_by<R>(scene, settings);
+        REQUIRE(result.stats.invalid_samples == 0);
+        const Color c = result.film.at(0, 0);
+        differences.push_back(double(c.x) + c.y + c.z - expected);
+      }
+      const glint_test::MeanEstimate difference = glint_test::estimate_mean(differences);
+      const std::string name =
+          glint_test::renderer_name<R>() + (colour ? " under a colour" : " under the sky");
+      INFO(name << ": expected " << expected << ", rendered " << expected + difference.mean
+                << " +- " << difference.standard_error);
+      // The quadrature's error is well under 1e-3 of the value; the colour's is float rounding.
+      family.add(name, glint_test::zero_mean_p_value(difference, 1e-3 * expected));
+      CHECK(std::abs(difference.mean) < 0.05 * expected);
     }
-    const glint_test::MeanEstimate difference = glint_test::estimate_mean(differences);
-    const std::string name = glint_test::renderer_name<R>();
-    INFO(name << ": expected " << expected << ", rendered " << expected + difference.mean << " +- "
-              << difference.standard_error);
-    // The quadrature's error is well under 1e-3 of the value.
-    family.add(name, glint_test::zero_mean_p_value(difference, 1e-3 * expected));
-    CHECK(std::abs(difference.mean) < 0.05 * expected);
   };
   check.template operator()<glint::Renderer<glint::variants::fast>>();
   check.template operator()<glint::Renderer<glint::variants::fast_no_emitter_sampling>>();
