@@ -192,8 +192,8 @@ class BidirectionalExecution {
                       typename C::sampler& light_sampler, ThreadState& state, Splat& splat,
                       TraceCounters& counters) const {
     Color radiance(0.0f);
-    const std::size_t t = tracer_.camera_subpath(
-        ray, filter_density, camera_sampler, std::span<Vertex>(state.camera), radiance, counters);
+    const std::size_t t = tracer_.camera_subpath(ray, filter_density, camera_sampler,
+                                                 std::span<Vertex>(state.camera), counters);
     const std::size_t s =
         tracer_.light_subpath(light_sampler, std::span<Vertex>(state.light), counters);
     tracer_.prepare_camera_merges(std::span<Vertex>(state.camera.data(), t), merge_density_);

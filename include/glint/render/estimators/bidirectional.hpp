@@ -448,12 +448,11 @@ class BidirectionalPathTracer {
   Color sample(const Ray& ray, float filter_density, SamplerType& camera_sampler,
                SamplerType& light_sampler, std::span<Vertex> camera_vertices,
                std::span<Vertex> light_vertices, Splat&& splat, TraceCounters& counters) const {
-    Color radiance(0.0f);
     const std::size_t t_count =
-        camera_subpath(ray, filter_density, camera_sampler, camera_vertices, radiance, counters);
+        camera_subpath(ray, filter_density, camera_sampler, camera_vertices, counters);
     const std::size_t s_count = light_subpath(light_sampler, light_vertices, counters);
-    return radiance + connect(camera_vertices.first(t_count), light_vertices.first(s_count),
-                              camera_sampler, splat, 0.0f, counters);
+    return connect(camera_vertices.first(t_count), light_vertices.first(s_count), camera_sampler,
+                   splat, 0.0f, counters);
   }
 
   /// Every join of camera subpath `z` (z[0] the camera) and light subpath `y` (y[0] on a light;
@@ -561,10 +560,10 @@ class BidirectionalPathTracer {
     return pt.beta * value * candidate.beta * (weight / target.merge_density);
   }
 
-  /// The camera subpath into `z`, z[0] the camera; the background its rays escape to goes
-  /// straight to `radiance` (no other strategy finds it). Returns the vertices made.
+  /// The camera subpath into `z`, z[0] the camera, ending on the environment where its last ray
+  /// escapes and the background is not black. Returns the vertices made.
   std::size_t camera_subpath(const Ray& ray, float filter_density, SamplerType& sampler,
-                             std::span<Vertex> z, Color& radiance, TraceCounters& counters) const {
+                             std::span<Vertex> z, TraceCounters& counters) const {
     Vertex& eye = z[0];
     eye = Vertex{};
     eye.kind = Kind::camera;
@@ -574,8 +573,7 @@ class BidirectionalPathTracer {
     // have to match it: the filter's density over the light paths per sample.
     const float direction_pdf =
         filter_density * camera_.solid_angle_density(ray.direction) / pixels_;
-    return walk(ray, eye.beta, direction_pdf, sampler, z, 1, Transport::radiance, radiance,
-                counters);
+    return walk(ray, eye.beta, direction_pdf, sampler, z, 1, Transport::radiance, counters);
   }
 
   /// The light subpath into `y`, y[0] on a light. Returns the vertices made (none where the
@@ -614,29 +612,28 @@ class BidirectionalPathTracer {
         ++counters.rays;
         if (scene_.occluded(from_light)) return std::size_t(1);
       }
-      Color unused(0.0f);
       return walk(emitted.ray, beta,
                   light.kAtInfinity ? emitted.position_pdf : emitted.direction_pdf, sampler, y, 1,
-                  Transport::importance, unused, counters);
+                  Transport::importance, counters);
     });
   }
 
  private:
   /// Follows `ray` from vertex v[first - 1], carrying `beta`, its direction drawn with density
   /// `direction_pdf` per unit solid angle (zero: through a delta), adding vertices to `v` while
-  /// the path length allows; camera subpaths collect the background in `background`. Returns
-  /// the number of vertices.
+  /// the path length allows; a camera subpath whose ray escapes ends on the environment (where
+  /// the background is not black). Returns the number of vertices.
   std::size_t walk(Ray ray, Color beta, float direction_pdf, SamplerType& sampler,
-                   std::span<Vertex> v, std::size_t first, Transport mode, Color& background,
+                   std::span<Vertex> v, std::size_t first, Transport mode,
                    TraceCounters& counters) const {
     const float start = max_component(beta);
     std::size_t n = first;
     for (;;) {
       const std::optional<SphereHit> hit = context_.closest_hit(ray, counters);
       if (!hit) {
+        // The background is a light that other strategies reach too: the escape is a vertex on
+        // it, strategy s = 0 (emitted). A black one brings nothing.
         if (mode != Transport::radiance) return n;
-        // The environment's image is a light that other strategies reach: the escape is a
-        // vertex on it, strategy s = 0 (emitted). A background of one colour only this finds.
         if (const std::optional<LightId> environment = lights_.environment_light()) {
           Vertex& vertex = v[n];
           vertex = Vertex{};
@@ -648,7 +645,6 @@ class BidirectionalPathTracer {
           vertex.pdf_forward = detail::area_density(direction_pdf, v[n - 1], vertex);
           return n + 1;
         }
-        background += beta * context_.scene().environment().radiance(ray.direction);
         return n;
       }
       const SurfaceInteraction it = context_.interaction(ray, *hit);
