@@ -14,7 +14,6 @@
 #include <cmath>
 #include <cstddef>
 #include <memory>
-#include <optional>
 #include <utility>
 #include <vector>
 
@@ -26,6 +25,7 @@
 #include "glint/math/sampling.hpp"
 #include "glint/math/vector.hpp"
 #include "glint/math/wide.hpp"
+#include "glint/scene/emitters.hpp"
 #include "glint/scene/sphere_texture.hpp"
 
 namespace glint::inline GLINT_ISA_NAMESPACE {
@@ -54,11 +54,11 @@ class Environment {
   /// (finite, non-negative). The axis must be finite and not zero (validation says so with the
   /// line).
   Environment(std::shared_ptr<const Texture> image, const TexturePlacement& placement, float scale)
-      : image_(SphereTexture(std::move(image), placement)), scale_(scale) {
+      : image_(std::make_shared<const SphereTexture>(std::move(image), placement)), scale_(scale) {
     build_distribution();
   }
 
-  bool has_image() const { return image_.has_value(); }
+  bool has_image() const { return image_ != nullptr; }
   /// The image and its frame; requires has_image().
   const SphereTexture& image() const { return *image_; }
   float scale() const { return scale_; }
@@ -131,7 +131,7 @@ class Environment {
 
   /// The mean radiance over all directions (of the channels' mean), in double.
   double mean_radiance() const {
-    if (!image_) return (double(color_.r) + double(color_.g) + double(color_.b)) / 3.0;
+    if (!image_) return channel_mean(color_);
     return mean_;
   }
 
@@ -143,9 +143,11 @@ class Environment {
   void build_distribution() {
     const Texture& texture = image_->image();
     const int width = texture.width(), height = texture.height();
+    std::vector<double> means(texture.texels().size());
+    for (std::size_t i = 0; i < means.size(); ++i)
+      means[i] = channel_mean(texture.texels()[i]);
     const auto mean_at = [&](int x, int y) {
-      const Color& c = texture.at(x, y);
-      return (double(c.r) + double(c.g) + double(c.b)) / 3.0;
+      return means[std::size_t(y) * std::size_t(width) + std::size_t(x)];
     };
     std::vector<double> weights(std::size_t(width) * std::size_t(height));
     double sum = 0.0, solid_angle = 0.0;
@@ -187,7 +189,9 @@ class Environment {
   }
 
   Color color_{0.0f};
-  std::optional<SphereTexture> image_;
+  /// Null for a colour. Shared rather than optional: the placed image never changes, and an
+  /// empty std::optional of it trips GCC 12's -Wmaybe-uninitialized where it is destroyed.
+  std::shared_ptr<const SphereTexture> image_;
   float scale_ = 1.0f;
   double mean_ = 0.0;
   PiecewiseConstant2D distribution_;
